@@ -1,0 +1,21 @@
+//! Adhesive elastic contact of a sphere and a flat.
+//!
+//! * [`md`]: the Maugis-Dugdale solution (paper eqs 8-10) parametrised along its whole
+//!   curve, joined to the non-contact branch of Kim, McMeeking & Johnson (1998); jump-in,
+//!   turning point, pull-off under load and displacement control. Nondimensional (eq 7).
+//! * [`MaugisKim`], [`Hertz`], [`Dmt`], [`Jkr`]: the same physics as SI
+//!   [`contact_core::AdhesionLaw`]s.
+//!
+//! Nondimensional groups (eq 7), with K = 4/3 E*, w the work of adhesion, R the radius:
+//! A = a (K/(pi w R^2))^(1/3), Fbar = F/(pi w R), Delta = delta (K^2/(pi^2 w^2 R))^(1/3),
+//! lambda = 2 sigma0 (R/(pi w K^2))^(1/3), sigma0 = w/z0.
+
+mod error;
+mod laws;
+pub mod md;
+mod scales;
+
+pub use error::MkError;
+pub use laws::{Dmt, Hertz, Jkr, MaugisKim};
+pub use md::{Branch, MdCurve, MdPoint, LAMBDA_CRITICAL};
+pub use scales::Scales;

@@ -1,0 +1,493 @@
+//! The Maugis-Dugdale curve with the Kim non-contact extension, nondimensional (eq 7).
+//!
+//! **Contact branch** (a > 0), parametrised by s = sqrt(m^2 - 1) > 0, m = c/a, t = atan s.
+//! Eq 8 is the quadratic P A^2 + Q A - 1 = 0 with
+//! P = (lambda/2)[s + (m^2 - 2) t], Q = (4 lambda^2/3)[s t - m + 1], both positive,
+//! so A = 2/(Q + sqrt(Q^2 + 4P)); then eq 9: Delta = A^2 - (4 lambda/3) A s and
+//! eq 10: Fbar = A^3 - lambda A^2 [s + m^2 t]. s -> 0 is Hertz, s -> infinity the junction.
+//!
+//! **Non-contact branch** (a = 0, Kim et al. 1998), parametrised by C = c/(scale):
+//! Delta = C^2/2 - (8 lambda/(3 pi)) C - 2/(pi lambda), Fbar = -(pi lambda/2) C^2,
+//! for 0 <= C <= C_j, C_j the positive root of (pi lambda/4) C^2 + (4 lambda^2/3)(pi/2 - 1) C = 1.
+//!
+//! Walking from C = 0 through the junction to s -> 0, Delta falls to one minimum
+//! Delta_t (the turning point) and then rises for ever; the part after Delta_t is stable
+//! under displacement control. Derivations: `docs/theory.md`.
+
+use crate::error::{check_positive, MkError};
+use contact_core::numeric::brent_with_values;
+use contact_core::Path;
+use serde::Serialize;
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::sync::OnceLock;
+
+/// lambda_c = (9 / (16 (1 - 1/pi)))^(1/3): the turning point sits exactly at the
+/// junction of the two branches, (16/9)(1 - 1/pi) lambda_c^3 = 1.
+pub const LAMBDA_CRITICAL: f64 = 0.937_947_457_210_712_3;
+
+/// Which branch a point lies on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Branch {
+    /// a = 0, c > 0 (Kim extension).
+    NonContact,
+    /// a > 0 (Maugis-Dugdale).
+    Contact,
+}
+
+/// One point of the curve, nondimensional (eq 7).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MdPoint {
+    /// Contact radius A.
+    pub a: f64,
+    /// Radius of the cohesive zone C = m A.
+    pub c: f64,
+    /// Interference Delta.
+    pub delta: f64,
+    /// Force Fbar (compressive > 0).
+    pub force: f64,
+    /// The contact-branch parameter s = sqrt(m^2 - 1) (infinite on the non-contact
+    /// branch). Reported because m = c/a rounded to a double cannot resolve s < 1e-8.
+    pub s: f64,
+    pub branch: Branch,
+    /// Stable under displacement control (after the turning point along the curve).
+    pub stable: bool,
+}
+
+const MAX_ITER: usize = 300;
+/// Bracket searches stop here in u = ln s; beyond, the contact branch is the junction
+/// to every digit of a double (Delta - Delta_j = O(1/s^2)).
+const U_MAX: f64 = 340.0;
+const U_MIN: f64 = -340.0;
+
+/// s - atan(s), by its series below s = 0.1 where the difference cancels.
+fn s_minus_atan(s: f64) -> f64 {
+    if s < 0.1 {
+        let x = s * s;
+        // sum_{k>=1} (-1)^(k+1) s^(2k+1)/(2k+1)
+        let mut term = s * x;
+        let mut sum = 0.0;
+        for k in 1..=10 {
+            let sign = if k % 2 == 1 { 1.0 } else { -1.0 };
+            sum += sign * term / (2 * k + 1) as f64;
+            term *= x;
+        }
+        sum
+    } else {
+        s - s.atan()
+    }
+}
+
+/// s/m^2 - atan(s), by its series below s = 0.1.
+fn s_over_m2_minus_atan(s: f64) -> f64 {
+    if s < 0.1 {
+        let x = s * s;
+        // sum_{k>=1} (-1)^k (2k/(2k+1)) s^(2k+1)
+        let mut term = s * x;
+        let mut sum = 0.0;
+        for k in 1..=10 {
+            let sign = if k % 2 == 1 { -1.0 } else { 1.0 };
+            sum += sign * (2 * k) as f64 / (2 * k + 1) as f64 * term;
+            term *= x;
+        }
+        sum
+    } else {
+        s / (1.0 + s * s) - s.atan()
+    }
+}
+
+/// Everything the contact branch needs at one s, computed once.
+#[derive(Debug, Clone, Copy)]
+struct Contact {
+    s: f64,
+    m: f64,
+    t: f64,
+    p: f64,
+    q: f64,
+    a: f64,
+    delta: f64,
+    force: f64,
+}
+
+impl Contact {
+    fn at(lambda: f64, s: f64) -> Self {
+        let t = s.atan();
+        let m = s.hypot(1.0);
+        let s_over = s / (1.0 + m); // (m - 1)/s, no overflow
+        // g1 = s + (m^2 - 2) t = (s - t) + s^2 t
+        let g1 = s_minus_atan(s) + s * s * t;
+        // g2 = s t - (m - 1)
+        let g2 = s * t - s * s_over;
+        let p = 0.5 * lambda * g1;
+        let q = 4.0 / 3.0 * lambda * lambda * g2;
+        let a = 2.0 / (q + (q * q + 4.0 * p).sqrt());
+        let delta = a * a - 4.0 / 3.0 * lambda * a * s;
+        // g3 = s + m^2 t
+        let force = a * a * (a - lambda * (s + (1.0 + s * s) * t));
+        Self {
+            s,
+            m,
+            t,
+            p,
+            q,
+            a,
+            delta,
+            force,
+        }
+    }
+
+    fn point(&self, stable: bool) -> MdPoint {
+        MdPoint {
+            a: self.a,
+            c: self.m * self.a,
+            delta: self.delta,
+            force: self.force,
+            s: self.s,
+            branch: Branch::Contact,
+            stable,
+        }
+    }
+
+    /// A quantity with the sign of dDelta/ds (Delta'(s) D / A, D = 2PA + Q > 0).
+    fn d_delta_sign(&self, lambda: f64) -> f64 {
+        let (s, m, t, a) = (self.s, self.m, self.t, self.a);
+        let l2 = lambda * lambda;
+        let dp = lambda * s * (t + s / (m * m));
+        let dq = 4.0 / 3.0 * l2 * (t + s / (m * m) - s / m);
+        let m_minus_1 = s * (s / (1.0 + m));
+        let phi = -2.0 * a * (dp * a + dq) - 4.0 / 3.0 * l2 * s_over_m2_minus_atan(s) * a
+            + 16.0 / 9.0 * l2 * lambda * m_minus_1 / (m * m);
+        // Phi = O(1/s) at large s: rescale so the bracket search compares O(1) values.
+        phi * m
+    }
+
+    /// A quantity with the sign of dFbar/ds.
+    fn d_force_sign(&self, lambda: f64) -> f64 {
+        let (s, m, t, a, p, q) = (self.s, self.m, self.t, self.a, self.p, self.q);
+        let dp = lambda * s * (t + s / (m * m));
+        let dq = 4.0 / 3.0 * lambda * lambda * (t + s / (m * m) - s / m);
+        let g3 = s + m * m * t;
+        let dg3 = 2.0 + 2.0 * s * t;
+        let d = 2.0 * p * a + q;
+        let gamma = -(dp * a + dq) * (3.0 * a - 2.0 * lambda * g3) - lambda * dg3 * d;
+        gamma / (m * m)
+    }
+}
+
+/// The Maugis-Kim curve for one lambda.
+#[derive(Debug)]
+pub struct MdCurve {
+    lambda: f64,
+    /// C of the minimum of Delta on the non-contact branch: 8 lambda/(3 pi).
+    b: f64,
+    c_j: f64,
+    turning: OnceLock<Result<Turning, MkError>>,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Turning {
+    point: MdPoint,
+    /// ln s of the turning point when it lies on the contact branch.
+    u: Option<f64>,
+}
+
+impl MdCurve {
+    /// The curve for transition parameter `lambda` (finite, > 0).
+    pub fn new(lambda: f64) -> Result<Self, MkError> {
+        check_positive("lambda", lambda)?;
+        let qa = PI * lambda / 4.0;
+        let qb = 4.0 / 3.0 * lambda * lambda * (FRAC_PI_2 - 1.0);
+        // positive root of qa C^2 + qb C - 1 = 0, in the form without cancellation
+        let c_j = 2.0 / (qb + (qb * qb + 4.0 * qa).sqrt());
+        Ok(Self {
+            lambda,
+            b: 8.0 * lambda / (3.0 * PI),
+            c_j,
+            turning: OnceLock::new(),
+        })
+    }
+
+    /// The transition parameter.
+    pub fn lambda(&self) -> f64 {
+        self.lambda
+    }
+
+    /// Jump-in interference on approach, Delta_in = -2/(pi lambda): the rigid gap at the
+    /// centre equals the Dugdale range z0.
+    pub fn jump_in_delta(&self) -> f64 {
+        -2.0 / (PI * self.lambda)
+    }
+
+    /// A point of the non-contact branch at cohesive radius `c` in [0, C_j].
+    pub fn noncontact_point(&self, c: f64) -> MdPoint {
+        let l = self.lambda;
+        MdPoint {
+            a: 0.0,
+            c,
+            // C^2/2 - b C - 2/(pi lambda) rewritten about the junction, where the
+            // terms cancel for small lambda: Delta_j = -(4 lambda/3) C_j.
+            delta: (c - self.c_j) * (0.5 * (c + self.c_j) - self.b) - 4.0 / 3.0 * l * self.c_j,
+            force: -0.5 * PI * l * c * c,
+            s: f64::INFINITY,
+            branch: Branch::NonContact,
+            stable: l <= LAMBDA_CRITICAL && c >= self.b,
+        }
+    }
+
+    /// A point of the contact branch at s = sqrt(m^2 - 1) > 0.
+    pub fn contact_point(&self, s: f64) -> MdPoint {
+        let c = Contact::at(self.lambda, s);
+        let stable = match self.turning() {
+            Ok(t) => t.u.is_none_or(|u| s.ln() <= u),
+            Err(_) => false,
+        };
+        c.point(stable)
+    }
+
+    /// The junction of the two branches (A = 0, C = C_j, Delta_j = -(4 lambda/3) C_j).
+    pub fn junction(&self) -> MdPoint {
+        let mut p = self.noncontact_point(self.c_j);
+        p.stable = self.lambda <= LAMBDA_CRITICAL;
+        p
+    }
+
+    fn turning(&self) -> Result<Turning, MkError> {
+        self.turning.get_or_init(|| self.find_turning()).clone()
+    }
+
+    fn find_turning(&self) -> Result<Turning, MkError> {
+        let l = self.lambda;
+        if l <= LAMBDA_CRITICAL {
+            let mut point = self.noncontact_point(self.b);
+            point.stable = true;
+            return Ok(Turning { point, u: None });
+        }
+        let f = |u: f64| Contact::at(l, u.exp()).d_delta_sign(l);
+        let Some((lo, hi)) = bracket_sign_change(&f, 0.0, U_MIN, U_MAX) else {
+            // lambda so close to lambda_c that the turning point is the junction to
+            // double precision.
+            let mut point = self.junction();
+            point.stable = true;
+            return Ok(Turning { point, u: None });
+        };
+        let u = brent_with_values("turning point dDelta/ds = 0", f, lo, hi, 0.0, 1e-14, MAX_ITER)?;
+        let mut point = Contact::at(l, u.exp()).point(true);
+        point.stable = true;
+        Ok(Turning { point, u: Some(u) })
+    }
+
+    /// The turning point: the minimum Delta_t of the interference along the curve, where
+    /// a retracting sphere jumps out of contact under displacement control.
+    pub fn turning_point(&self) -> Result<MdPoint, MkError> {
+        self.turning().map(|t| t.point)
+    }
+
+    /// Pull-off force under displacement control: the force at the turning point
+    /// (JKR limit -5/6).
+    pub fn pull_off_displacement_control(&self) -> Result<f64, MkError> {
+        self.turning_point().map(|p| p.force)
+    }
+
+    /// Pull-off force under load control: the minimum force on the stable branch (DMT
+    /// limit -2, JKR limit -3/2).
+    pub fn pull_off_load_control(&self) -> Result<MdPoint, MkError> {
+        let l = self.lambda;
+        let turning = self.turning()?;
+        // The stable part of the contact branch is u <= u_t (all u if lambda <= lambda_c);
+        // the non-contact stable part has Fbar decreasing towards the junction, so the
+        // end point of the scan (turning point or junction) is always a candidate.
+        let mut best = match turning.u {
+            Some(_) => turning.point,
+            None => self.junction(),
+        };
+        let u_hi = turning.u.unwrap_or(40.0);
+        let f = |u: f64| Contact::at(l, u.exp()).d_force_sign(l);
+        let step = 0.25;
+        let mut u0 = (-30.0_f64).min(u_hi - 1.0);
+        let mut f0 = f(u0);
+        while u0 < u_hi {
+            let u1 = (u0 + step).min(u_hi);
+            let f1 = f(u1);
+            if f0 < 0.0 && f1 >= 0.0 {
+                let u = brent_with_values("pull-off dFbar/ds = 0", f, (u0, f0), (u1, f1), 0.0, 1e-13, MAX_ITER)?;
+                let p = Contact::at(l, u.exp()).point(true);
+                if p.force < best.force {
+                    best = p;
+                }
+            }
+            u0 = u1;
+            f0 = f1;
+        }
+        Ok(best)
+    }
+
+    /// The equilibrium on the stable branch at interference `delta` (Delta >= Delta_t).
+    pub fn stable_point(&self, delta: f64) -> Result<MdPoint, MkError> {
+        if !delta.is_finite() {
+            return Err(MkError::Invalid {
+                field: "delta",
+                value: delta,
+                allowed: "finite",
+            });
+        }
+        let l = self.lambda;
+        let junction = self.junction();
+        if delta > junction.delta {
+            // One root on the whole contact branch (the unstable part lies below Delta_j).
+            return self.solve_contact(delta, U_MAX);
+        }
+        let turning = self.turning()?;
+        if delta < turning.point.delta {
+            return Err(MkError::BelowTurningPoint {
+                delta,
+                turning: turning.point.delta,
+            });
+        }
+        match turning.u {
+            // Stable part of the non-contact branch: C >= 8 lambda/(3 pi), closed form.
+            None => {
+                // (C - b)^2 = (C_j - b)^2 + 2 (Delta - Delta_j)
+                let cj_b = self.c_j - self.b;
+                let disc = (cj_b * cj_b + 2.0 * (delta - junction.delta)).max(0.0);
+                let c = (self.b + disc.sqrt()).min(self.c_j);
+                let mut p = self.noncontact_point(c);
+                p.stable = true;
+                Ok(p)
+            }
+            // Between Delta_t and Delta_j the stable root lies below the turning point.
+            Some(u_t) => self.solve_contact(delta, u_t),
+        }
+    }
+
+    /// Solve Delta(s) = delta for ln s <= u_top, where Delta decreases in s.
+    fn solve_contact(&self, delta: f64, u_top: f64) -> Result<MdPoint, MkError> {
+        let l = self.lambda;
+        let g = |u: f64| Contact::at(l, u.exp()).delta - delta;
+        // Hertz estimate A ~ sqrt(Delta), s ~ (3/(2 lambda A^2))^(1/3) as a starting point.
+        let guess = if delta > 1.0 {
+            ((1.5 / (l * delta)).cbrt()).ln().min(u_top)
+        } else {
+            0.0_f64.min(u_top)
+        };
+        let mut hi = guess;
+        let mut g_hi = g(hi);
+        let mut lo = guess;
+        let mut g_lo = g_hi;
+        if g_hi > 0.0 {
+            // need larger s for Delta below target
+            loop {
+                lo = hi;
+                g_lo = g_hi;
+                if hi >= u_top {
+                    break;
+                }
+                hi = (hi + 2.0).min(u_top);
+                g_hi = g(hi);
+                if g_hi <= 0.0 {
+                    break;
+                }
+            }
+            if g_hi > 0.0 {
+                // target within rounding of the end of the branch
+                return Ok(Contact::at(l, hi.exp()).point(true));
+            }
+        } else {
+            while g_lo <= 0.0 {
+                hi = lo;
+                g_hi = g_lo;
+                lo -= 2.0;
+                if lo < U_MIN {
+                    return Err(MkError::Invalid {
+                        field: "delta",
+                        value: delta,
+                        allowed: "within the range a double can resolve on the contact branch",
+                    });
+                }
+                g_lo = g(lo);
+            }
+        }
+        let u = brent_with_values("Maugis-Dugdale Delta(s) = Delta", g, (lo, g_lo), (hi, g_hi), 0.0, 1e-15, MAX_ITER)?;
+        Ok(Contact::at(l, u.exp()).point(true))
+    }
+
+    /// Force on a path at interference `delta`, all nondimensional; `Path::Retract { from }`
+    /// gives the largest interference of the excursion.
+    ///
+    /// Approach: zero while Delta < Delta_in, then the stable branch (jump-in). Retract
+    /// (after having reached Delta_in): the stable branch down to Delta_t, then zero.
+    pub fn force(&self, delta: f64, path: Path) -> Result<f64, MkError> {
+        let d_in = self.jump_in_delta();
+        if delta >= d_in {
+            return Ok(self.stable_point(delta)?.force);
+        }
+        match path {
+            Path::Approach => Ok(0.0),
+            Path::Retract { from } if from < d_in => Ok(0.0),
+            Path::Retract { .. } => {
+                let t = self.turning_point()?;
+                if delta < t.delta {
+                    Ok(0.0)
+                } else {
+                    Ok(self.stable_point(delta)?.force)
+                }
+            }
+        }
+    }
+
+    /// The whole curve from C = 0 through the junction into the contact branch up to
+    /// interference `delta_end`, `n` points (at least 4): a quarter on the non-contact
+    /// branch, the rest log-spaced in s on the contact branch.
+    pub fn curve(&self, n: usize, delta_end: f64) -> Result<Vec<MdPoint>, MkError> {
+        let n = n.max(4);
+        let n_nc = n / 4;
+        let mut out = Vec::with_capacity(n);
+        for i in 0..n_nc {
+            out.push(self.noncontact_point(self.c_j * i as f64 / n_nc as f64));
+        }
+        out.push(self.junction());
+        let end = self.solve_contact(delta_end.max(self.junction().delta + 1e-6), U_MAX)?;
+        let s_end = (end.c / end.a).mul_add(end.c / end.a, -1.0).max(0.0).sqrt().max(1e-300);
+        // start where the contact branch has left the junction by about 1e-6 of C_j
+        let u_start = (1e3 / self.c_j.min(1.0)).ln().max(s_end.ln() + 1.0);
+        let u_end = s_end.ln();
+        let n_c = n - out.len();
+        for i in 1..=n_c {
+            let u = u_start + (u_end - u_start) * i as f64 / n_c as f64;
+            out.push(self.contact_point(u.exp()));
+        }
+        Ok(out)
+    }
+}
+
+/// Expands from u0 in both directions to find (lo, f(lo) < 0) and (hi, f(hi) > 0) with
+/// lo < hi, for a function negative at small u and positive at large u.
+fn bracket_sign_change(f: &dyn Fn(f64) -> f64, u0: f64, u_min: f64, u_max: f64) -> Option<((f64, f64), (f64, f64))> {
+    let f0 = f(u0);
+    if f0 > 0.0 {
+        let (mut hi, mut f_hi) = (u0, f0);
+        let mut u = u0;
+        while u > u_min {
+            u -= 2.0;
+            let fu = f(u);
+            if fu <= 0.0 {
+                return Some(((u, fu), (hi, f_hi)));
+            }
+            hi = u;
+            f_hi = fu;
+        }
+        None
+    } else {
+        let (mut lo, mut f_lo) = (u0, f0);
+        let mut u = u0;
+        while u < u_max {
+            u += 2.0;
+            let fu = f(u);
+            if fu > 0.0 {
+                return Some(((lo, f_lo), (u, fu)));
+            }
+            lo = u;
+            f_lo = fu;
+        }
+        None
+    }
+}
