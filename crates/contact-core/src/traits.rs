@@ -37,6 +37,13 @@ pub trait AdhesionLaw {
 
     /// Jump-in and jump-out interferences (m) for a sphere of `radius` (m).
     fn jumps(&self, radius: f64) -> Result<Jumps, LawError>;
+
+    /// Interferences (m) where the force is continuous but not smooth, for a sphere of
+    /// `radius` (m). Quadrature over asperity heights splits there.
+    fn kinks(&self, radius: f64) -> Result<Vec<f64>, LawError> {
+        let _ = radius;
+        Ok(Vec::new())
+    }
 }
 
 /// Deformed state of an asperity after loading to `delta_max` (paper eqs 4-5).
@@ -102,6 +109,12 @@ pub trait AsperityModel {
     /// Jump-in and jump-out interferences (m) of an asperity with this history
     /// (including its permanent loss of height).
     fn jumps(&self, history: AsperityHistory) -> Result<Jumps, LawError>;
+
+    /// Interferences (m) where the force of an asperity with this history has a kink.
+    fn kinks(&self, history: AsperityHistory) -> Result<Vec<f64>, LawError> {
+        let _ = history;
+        Ok(Vec::new())
+    }
 }
 
 /// The contact law of a rough surface against a flat: pressure (Pa, compressive > 0)
@@ -124,8 +137,8 @@ pub trait SurfaceLaw {
     fn load(&self, history: &Self::History, d: f64) -> Self::History;
 
     /// Separation (m) above which the pressure is below the law's stated tail bound on
-    /// both paths: integrals over d may start there.
-    fn reach(&self) -> f64;
+    /// both paths for this history: integrals over d may start there.
+    fn reach(&self, history: &Self::History) -> Result<f64, LawError>;
 
     /// Separations (m) where the pressure has a kink for this history (for instance the
     /// deepest separation reached, where reloading turns into virgin loading).

@@ -1,0 +1,20 @@
+//! The Greenwood-Williamson rough surface (paper section 2.3, eqs 14-16) with a plastic
+//! history per asperity height.
+//!
+//! p(d) = N * integral F(h - d; delta_max(h), path) phi(h) dh, phi the Gaussian of
+//! standard deviation sigma_s (eq 14), N asperities per unit area, d the separation of the
+//! mean plane of asperity heights from the flat.
+//!
+//! The integrand jumps where asperities jump in or out and has kinks at yield onset and
+//! where the effective radius switches (delta = delta_res): the height axis is split there
+//! and each panel integrated on its own, adaptively (tanh-sinh) or with a fixed
+//! Gauss-Legendre rule (square-root substitution on the panel at the contact edge,
+//! where the force has a square-root singularity).
+
+mod error;
+mod history;
+mod surface;
+
+pub use error::GwError;
+pub use history::{GwHistory, HeightTable};
+pub use surface::{GreenwoodWilliamson, Quadrature, TAIL_SIGMAS};

@@ -94,6 +94,10 @@ impl AdhesionLaw for Dmt {
             jump_out: -self.z0,
         })
     }
+    /// The Hertz term starts at delta = 0.
+    fn kinks(&self, _radius: f64) -> Result<Vec<f64>, LawError> {
+        Ok(vec![0.0])
+    }
 }
 
 /// Johnson-Kendall-Roberts, the lambda -> infinity limit. Nondimensionally (eq 7)
@@ -227,6 +231,17 @@ impl AdhesionLaw for MaugisKim {
         Ok(Jumps {
             jump_in: curve.jump_in_delta() * sc.interference,
             jump_out: curve.turning_point()?.delta * sc.interference,
+        })
+    }
+    /// For lambda <= lambda_c the stable branch passes the junction of the non-contact
+    /// and contact branches, where the curvature of F(delta) changes.
+    fn kinks(&self, radius: f64) -> Result<Vec<f64>, LawError> {
+        let sc = self.scales(radius)?;
+        let curve = MdCurve::new(self.lambda(radius))?;
+        Ok(if curve.lambda() <= crate::LAMBDA_CRITICAL {
+            vec![curve.junction().delta * sc.interference]
+        } else {
+            Vec::new()
         })
     }
 }

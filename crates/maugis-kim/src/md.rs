@@ -330,7 +330,6 @@ impl MdCurve {
                 allowed: "finite",
             });
         }
-        let l = self.lambda;
         let junction = self.junction();
         if delta > junction.delta {
             // One root on the whole contact branch (the unstable part lies below Delta_j).

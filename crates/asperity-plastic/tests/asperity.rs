@@ -1,0 +1,109 @@
+//! Behaviour of the elasto-plastic adhesive asperity (paper section 2.2) with the
+//! Maugis-Kim law on the Ru sphere of Table 1 against a rigid flat.
+
+use asperity_plastic::{Elastic, ElastoPlasticAsperity, EtsionKadin, YieldModulus};
+use contact_core::{AdhesionLaw, AsperityHistory, AsperityModel, Material, Pair, Path, PlasticityLaw};
+use maugis_kim::MaugisKim;
+
+fn ru() -> (EtsionKadin, MaugisKim, Pair) {
+    let m = Material::new(410e9, 0.3, 3.42e9).unwrap();
+    let pair = Pair::new(m, None, 4e-6).unwrap();
+    let ek = EtsionKadin::new(&pair, YieldModulus::Composite).unwrap();
+    let mk = MaugisKim::new(pair.k(), 1.0, 0.169e-9).unwrap();
+    (ek, mk, pair)
+}
+
+#[test]
+fn below_yield_the_asperity_is_exactly_the_elastic_law() {
+    let (ek, mk, _) = ru();
+    let dcp = ek.critical_interference();
+    let plastic = ElastoPlasticAsperity::new(ek, mk);
+    let elastic = ElastoPlasticAsperity::new(Elastic::new(4e-6).unwrap(), mk);
+    for delta in [-0.3e-9, -0.1e-9, 0.0, 0.2 * dcp, 0.9 * dcp, dcp] {
+        for path in [Path::Approach, Path::Retract { from: dcp }] {
+            let a = plastic.force(delta, AsperityHistory::VIRGIN, path).unwrap();
+            let b = elastic.force(delta, AsperityHistory::VIRGIN, path).unwrap();
+            let c = mk.force(4e-6, delta, path).unwrap();
+            assert_eq!(a, b);
+            assert_eq!(a, c);
+        }
+    }
+}
+
+#[test]
+fn loading_and_unloading_meet_at_delta_max() {
+    let (ek, mk, _) = ru();
+    let asp = ElastoPlasticAsperity::new(ek, mk);
+    for dmax in [17e-9, 34e-9, 51e-9] {
+        let load = asp.force(dmax, AsperityHistory::VIRGIN, Path::Approach).unwrap();
+        let unload = asp.force(dmax, AsperityHistory::VIRGIN, Path::Retract { from: dmax }).unwrap();
+        assert!((load - unload).abs() <= 1e-12 * load.abs(), "{load} vs {unload}");
+    }
+}
+
+#[test]
+fn reloading_up_to_delta_max_retraces_the_unloading_curve() {
+    let (ek, mk, _) = ru();
+    let asp = ElastoPlasticAsperity::new(ek, mk);
+    let dmax = 34e-9;
+    let hist = asp.load(AsperityHistory::VIRGIN, dmax);
+    let st = asp.plastic_state(hist);
+    for i in 0..=50 {
+        // from just past jump-in (delta_res - z0) to delta_max
+        let delta = st.delta_res - 0.1e-9 + (dmax - st.delta_res + 0.1e-9) * i as f64 / 50.0;
+        let un = asp.force(delta, hist, Path::Retract { from: dmax }).unwrap();
+        let re = asp.force(delta, hist, Path::Approach).unwrap();
+        assert_eq!(un, re, "delta {delta}");
+    }
+    // and loading further yields again: the loading force beyond delta_max is the virgin one
+    let beyond = 40e-9;
+    assert_eq!(
+        asp.force(beyond, hist, Path::Approach).unwrap(),
+        asp.force(beyond, AsperityHistory::VIRGIN, Path::Approach).unwrap()
+    );
+}
+
+#[test]
+fn force_is_continuous_where_the_effective_radius_changes() {
+    let (ek, mk, _) = ru();
+    let asp = ElastoPlasticAsperity::new(ek, mk);
+    for dmax in [17e-9, 51e-9] {
+        let hist = AsperityHistory { delta_max: dmax };
+        let st = asp.plastic_state(hist);
+        let path = Path::Retract { from: dmax };
+        // at delta_res R_eff switches from R_res to eq 12
+        let f0 = asp.force(st.delta_res, hist, path).unwrap();
+        for eps in [1e-15, 1e-13, 1e-12] {
+            let fp = asp.force(st.delta_res + eps, hist, path).unwrap();
+            let fm = asp.force(st.delta_res - eps, hist, path).unwrap();
+            let scale = std::f64::consts::PI * 1.0 * st.r_res;
+            assert!((fp - f0).abs() < 1e-2 * scale && (fm - f0).abs() < 1e-2 * scale, "{fm} {f0} {fp}");
+        }
+        // and along the virgin loading curve through yield onset
+        let dcp = ek.critical_interference();
+        let a = asp.force(dcp * (1.0 - 1e-9), AsperityHistory::VIRGIN, Path::Approach).unwrap();
+        let b = asp.force(dcp * (1.0 + 1e-9), AsperityHistory::VIRGIN, Path::Approach).unwrap();
+        assert!((a - b).abs() < 1e-6 * a.abs());
+    }
+}
+
+#[test]
+fn plastic_unloading_is_more_adhesive_than_elastic() {
+    // the paper's central claim for one asperity: the flattened tip adheres more
+    let (ek, mk, _) = ru();
+    let plastic = ElastoPlasticAsperity::new(ek, mk);
+    let elastic = ElastoPlasticAsperity::new(Elastic::new(4e-6).unwrap(), mk);
+    let pull_off = |asp: &dyn AsperityModel, dmax: f64| {
+        let hist = AsperityHistory { delta_max: dmax };
+        let j = asp.jumps(hist).unwrap();
+        let mut min: f64 = 0.0;
+        for i in 0..=4000 {
+            let d = j.jump_out + (dmax - j.jump_out) * i as f64 / 4000.0;
+            min = min.min(asp.force(d, hist, Path::Retract { from: dmax }).unwrap());
+        }
+        min
+    };
+    let fe = pull_off(&elastic, 34e-9);
+    let fp = pull_off(&plastic, 34e-9);
+    assert!(fp < fe && fe < 0.0, "plastic {fp} elastic {fe}");
+}
