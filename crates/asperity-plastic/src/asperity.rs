@@ -63,12 +63,14 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         })
     }
 
-    /// delta_res, where R_eff switches from R_res to eq 12 (if yielded), and the
+    /// delta_res, where R_eff switches from R_res to eq 12, and the
     /// adhesion law's kinks, shifted by delta_res.
     fn kinks(&self, history: AsperityHistory) -> Result<Vec<f64>, LawError> {
         let st = self.plasticity.state(history.delta_max);
         let mut k: Vec<f64> = self.adhesion.kinks(st.r_res)?.into_iter().map(|x| x + st.delta_res).collect();
-        if st.delta_res > 0.0 {
+        // listed for every asperity that can yield, so that the list has the same
+        // length at every height (delta_res = 0 before yield)
+        if self.plasticity.critical_interference().is_finite() {
             k.push(st.delta_res);
         }
         Ok(k)

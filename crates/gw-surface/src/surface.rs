@@ -219,7 +219,7 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
             let g = |h: f64| -> Result<f64, GwError> {
                 let k = self.law(h, d, a.kinks(hist_eff(h)))?;
                 // an asperity without this kink (not yet yielded) lies below it
-                Ok(k.get(i).map_or(f64::NEG_INFINITY, |&x| h - d - x))
+                Ok(k.get(i).map_or(-self.sigma_s, |&x| h - d - x))
             };
             if let Some(h_k) = self.edge("kink height", &g, edge, top)? {
                 points.push(h_k);
