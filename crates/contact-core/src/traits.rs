@@ -140,6 +140,10 @@ pub trait SurfaceLaw {
     /// both paths for this history: integrals over d may start there.
     fn reach(&self, history: &Self::History) -> Result<f64, LawError>;
 
+    /// A length (m) over which the pressure changes appreciably (the roughness, for a
+    /// Greenwood-Williamson surface); integrals over d size their panels by it.
+    fn length_scale(&self) -> f64;
+
     /// Separations (m) where the pressure has a kink for this history (for instance the
     /// deepest separation reached, where reloading turns into virgin loading).
     fn kinks(&self, history: &Self::History) -> Vec<f64> {

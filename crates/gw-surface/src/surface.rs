@@ -343,6 +343,10 @@ impl<M: AsperityModel> SurfaceLaw for GreenwoodWilliamson<M> {
         Ok(top - lowest)
     }
 
+    fn length_scale(&self) -> f64 {
+        self.sigma_s
+    }
+
     fn kinks(&self, history: &GwHistory) -> Vec<f64> {
         match history.deepest() {
             Some(d) if d.is_finite() => vec![d],
