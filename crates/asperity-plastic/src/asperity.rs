@@ -1,4 +1,6 @@
-use contact_core::{AdhesionLaw, AsperityHistory, AsperityModel, Jumps, LawError, Path, PlasticState, PlasticityLaw};
+use contact_core::{
+    AdhesionLaw, AsperityHistory, AsperityModel, Jumps, LawError, Path, PlasticState, PlasticityLaw,
+};
 
 /// One asperity: a plasticity law `P` and an adhesion law `A` composed as in the paper's
 /// section 2.2. The adhesion law sees the deformed asperity as an elastic sphere of radius
@@ -15,7 +17,10 @@ pub struct ElastoPlasticAsperity<P, A> {
 impl<P: PlasticityLaw, A: AdhesionLaw> ElastoPlasticAsperity<P, A> {
     /// Compose a plasticity law and an adhesion law.
     pub fn new(plasticity: P, adhesion: A) -> Self {
-        Self { plasticity, adhesion }
+        Self {
+            plasticity,
+            adhesion,
+        }
     }
 
     /// Radius R_eff (m) and effective interference (m) the adhesion law sees at `delta`
@@ -67,7 +72,12 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
     /// adhesion law's kinks, shifted by delta_res.
     fn kinks(&self, history: AsperityHistory) -> Result<Vec<f64>, LawError> {
         let st = self.plasticity.state(history.delta_max);
-        let mut k: Vec<f64> = self.adhesion.kinks(st.r_res)?.into_iter().map(|x| x + st.delta_res).collect();
+        let mut k: Vec<f64> = self
+            .adhesion
+            .kinks(st.r_res)?
+            .into_iter()
+            .map(|x| x + st.delta_res)
+            .collect();
         // listed for every asperity that can yield, so that the list has the same
         // length at every height (delta_res = 0 before yield)
         if self.plasticity.critical_interference().is_finite() {

@@ -41,7 +41,8 @@ impl EtsionKadin {
             return Err(PlasticError::Domain {
                 field: "yield_stress",
                 value: s_y,
-                allowed: "finite for the Etsion-Kadin law (use Elastic for a material that never yields)",
+                allowed:
+                    "finite for the Etsion-Kadin law (use Elastic for a material that never yields)",
             });
         }
         let c_v = 1.295 * (0.736 * m.poisson_ratio()).exp();
@@ -133,7 +134,11 @@ impl PlasticityLaw for EtsionKadin {
         let omega = state.delta_max / self.delta_cp;
         let x = ((delta - state.delta_res) / (state.delta_max - state.delta_res)).min(1.0);
         state.r_res
-            - self.k_res * (1.0 - Self::c1(omega)) * (omega - 1.0) * self.radius * Self::shape(Self::c2(omega), x)
+            - self.k_res
+                * (1.0 - Self::c1(omega))
+                * (omega - 1.0)
+                * self.radius
+                * Self::shape(Self::c2(omega), x)
     }
 }
 
@@ -200,31 +205,65 @@ mod tests {
     fn yield_onset_of_table_1_ru_by_hand() {
         let law = ru(YieldModulus::Composite);
         assert!(close(law.c_v(), 1.614960818115471, 1e-14));
-        assert!(close(law.critical_interference(), 1.4831702606020387e-9, 1e-12));
-        assert!(close(law.critical_contact_radius(), 7.70238991638839e-08, 1e-12));
+        assert!(close(
+            law.critical_interference(),
+            1.4831702606020387e-9,
+            1e-12
+        ));
+        assert!(close(
+            law.critical_contact_radius(),
+            7.70238991638839e-08,
+            1e-12
+        ));
         assert!(close(law.critical_force(), 6.862742594014353e-05, 1e-12));
         // eq 3 equals the Hertz force at delta_CP when eq 1 uses E*
         let e_star = 410e9 / 0.91;
         let hertz = 4.0 / 3.0 * e_star * 4e-6f64.sqrt() * law.critical_interference().powf(1.5);
         assert!(close(law.critical_force(), hertz, 1e-12));
         let printed = ru(YieldModulus::AsPrinted);
-        assert!(close(printed.critical_interference(), 1.791052120036274e-09, 1e-12));
+        assert!(close(
+            printed.critical_interference(),
+            1.791052120036274e-09,
+            1e-12
+        ));
     }
 
     #[test]
     fn residual_state_of_fig2_cases_by_hand() {
         let law = ru(YieldModulus::Composite);
         let cases = [
-            (17e-9, 6.849380455242463e-09, 2.2974506442240938e-05, 1.2300414100996561e-05, 1.853356270183638e-05),
-            (34e-9, 1.7568107279114872e-08, 4.376268385576789e-05, 1.5759923644545714e-05, 3.943958587730331e-05),
-            (51e-9, 2.926818342698817e-08, 6.455086126929484e-05, 1.8919113649719765e-05, 5.961720573606344e-05),
+            (
+                17e-9,
+                6.849380455242463e-09,
+                2.2974506442240938e-05,
+                1.2300414100996561e-05,
+                1.853356270183638e-05,
+            ),
+            (
+                34e-9,
+                1.7568107279114872e-08,
+                4.376268385576789e-05,
+                1.5759923644545714e-05,
+                3.943958587730331e-05,
+            ),
+            (
+                51e-9,
+                2.926818342698817e-08,
+                6.455086126929484e-05,
+                1.8919113649719765e-05,
+                5.961720573606344e-05,
+            ),
         ];
         for (dmax, dres, rres, r_load, r_mid) in cases {
             let st = law.state(dmax);
             assert!(close(st.delta_res, dres, 1e-12), "{dmax}: {}", st.delta_res);
             assert!(close(st.r_res, rres, 1e-12));
             assert!(close(law.effective_radius(&st, dmax), r_load, 1e-12));
-            assert!(close(law.effective_radius(&st, 0.5 * (dres + dmax)), r_mid, 1e-12));
+            assert!(close(
+                law.effective_radius(&st, 0.5 * (dres + dmax)),
+                r_mid,
+                1e-12
+            ));
             assert!(!st.extrapolated);
         }
     }
@@ -244,7 +283,10 @@ mod tests {
                     let st = law.state(10.0 * dcp * (1.0 + sgn * eps));
                     let dd = st.delta_res + x * (st.delta_max - st.delta_res);
                     let r = law.effective_radius(&st, dd);
-                    assert!((r - r0).abs() <= 50.0 * eps * r0, "x {x} eps {eps}: {r} vs {r0}");
+                    assert!(
+                        (r - r0).abs() <= 50.0 * eps * r0,
+                        "x {x} eps {eps}: {r} vs {r0}"
+                    );
                 }
             }
         }
@@ -317,6 +359,8 @@ mod tests {
         assert_eq!((st.delta_res, st.r_res), (0.0, 4e-6));
         assert!(Elastic::new(-1.0).is_err());
         let m = Material::new(410e9, 0.3, f64::INFINITY).unwrap();
-        assert!(EtsionKadin::new(&Pair::new(m, None, 4e-6).unwrap(), YieldModulus::Composite).is_err());
+        assert!(
+            EtsionKadin::new(&Pair::new(m, None, 4e-6).unwrap(), YieldModulus::Composite).is_err()
+        );
     }
 }

@@ -2,7 +2,9 @@
 //! Maugis-Kim law on the Ru sphere of Table 1 against a rigid flat.
 
 use asperity_plastic::{Elastic, ElastoPlasticAsperity, EtsionKadin, YieldModulus};
-use contact_core::{AdhesionLaw, AsperityHistory, AsperityModel, Material, Pair, Path, PlasticityLaw};
+use contact_core::{
+    AdhesionLaw, AsperityHistory, AsperityModel, Material, Pair, Path, PlasticityLaw,
+};
 use maugis_kim::MaugisKim;
 
 fn ru() -> (EtsionKadin, MaugisKim, Pair) {
@@ -35,9 +37,16 @@ fn loading_and_unloading_meet_at_delta_max() {
     let (ek, mk, _) = ru();
     let asp = ElastoPlasticAsperity::new(ek, mk);
     for dmax in [17e-9, 34e-9, 51e-9] {
-        let load = asp.force(dmax, AsperityHistory::VIRGIN, Path::Approach).unwrap();
-        let unload = asp.force(dmax, AsperityHistory::VIRGIN, Path::Retract { from: dmax }).unwrap();
-        assert!((load - unload).abs() <= 1e-12 * load.abs(), "{load} vs {unload}");
+        let load = asp
+            .force(dmax, AsperityHistory::VIRGIN, Path::Approach)
+            .unwrap();
+        let unload = asp
+            .force(dmax, AsperityHistory::VIRGIN, Path::Retract { from: dmax })
+            .unwrap();
+        assert!(
+            (load - unload).abs() <= 1e-12 * load.abs(),
+            "{load} vs {unload}"
+        );
     }
 }
 
@@ -51,7 +60,9 @@ fn reloading_up_to_delta_max_retraces_the_unloading_curve() {
     for i in 0..=50 {
         // from just past jump-in (delta_res - z0) to delta_max
         let delta = st.delta_res - 0.1e-9 + (dmax - st.delta_res + 0.1e-9) * i as f64 / 50.0;
-        let un = asp.force(delta, hist, Path::Retract { from: dmax }).unwrap();
+        let un = asp
+            .force(delta, hist, Path::Retract { from: dmax })
+            .unwrap();
         let re = asp.force(delta, hist, Path::Approach).unwrap();
         assert_eq!(un, re, "delta {delta}");
     }
@@ -59,7 +70,8 @@ fn reloading_up_to_delta_max_retraces_the_unloading_curve() {
     let beyond = 40e-9;
     assert_eq!(
         asp.force(beyond, hist, Path::Approach).unwrap(),
-        asp.force(beyond, AsperityHistory::VIRGIN, Path::Approach).unwrap()
+        asp.force(beyond, AsperityHistory::VIRGIN, Path::Approach)
+            .unwrap()
     );
 }
 
@@ -77,12 +89,19 @@ fn force_is_continuous_where_the_effective_radius_changes() {
             let fp = asp.force(st.delta_res + eps, hist, path).unwrap();
             let fm = asp.force(st.delta_res - eps, hist, path).unwrap();
             let scale = std::f64::consts::PI * 1.0 * st.r_res;
-            assert!((fp - f0).abs() < 1e-2 * scale && (fm - f0).abs() < 1e-2 * scale, "{fm} {f0} {fp}");
+            assert!(
+                (fp - f0).abs() < 1e-2 * scale && (fm - f0).abs() < 1e-2 * scale,
+                "{fm} {f0} {fp}"
+            );
         }
         // and along the virgin loading curve through yield onset
         let dcp = ek.critical_interference();
-        let a = asp.force(dcp * (1.0 - 1e-9), AsperityHistory::VIRGIN, Path::Approach).unwrap();
-        let b = asp.force(dcp * (1.0 + 1e-9), AsperityHistory::VIRGIN, Path::Approach).unwrap();
+        let a = asp
+            .force(dcp * (1.0 - 1e-9), AsperityHistory::VIRGIN, Path::Approach)
+            .unwrap();
+        let b = asp
+            .force(dcp * (1.0 + 1e-9), AsperityHistory::VIRGIN, Path::Approach)
+            .unwrap();
         assert!((a - b).abs() < 1e-6 * a.abs());
     }
 }

@@ -22,7 +22,10 @@ pub enum CoreError {
     },
     /// A root search that ran out of iterations.
     #[error("root of {what} did not converge in {iterations} iterations")]
-    NoConvergence { what: &'static str, iterations: usize },
+    NoConvergence {
+        what: &'static str,
+        iterations: usize,
+    },
     /// A quadrature that could not reach its tolerance.
     #[error("quadrature of {what} reached error {achieved:e} > tolerance {tolerance:e}")]
     Quadrature {

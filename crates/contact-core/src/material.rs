@@ -14,7 +14,11 @@ pub struct Material {
 impl Material {
     /// `youngs_modulus` E (Pa, > 0), `poisson_ratio` nu in [0, 0.5), `yield_stress` S_Y (Pa, > 0;
     /// `f64::INFINITY` for a material that never yields).
-    pub fn new(youngs_modulus: f64, poisson_ratio: f64, yield_stress: f64) -> Result<Self, CoreError> {
+    pub fn new(
+        youngs_modulus: f64,
+        poisson_ratio: f64,
+        yield_stress: f64,
+    ) -> Result<Self, CoreError> {
         positive("youngs_modulus", youngs_modulus)?;
         if !(poisson_ratio.is_finite() && (0.0..0.5).contains(&poisson_ratio)) {
             return Err(CoreError::Invalid {
@@ -71,7 +75,11 @@ pub struct Pair {
 impl Pair {
     /// A sphere of `radius` R (m) of material `asperity` against a flat of `counter`
     /// (`None` for a rigid flat).
-    pub fn new(asperity: Material, counter: Option<Material>, radius: f64) -> Result<Self, CoreError> {
+    pub fn new(
+        asperity: Material,
+        counter: Option<Material>,
+        radius: f64,
+    ) -> Result<Self, CoreError> {
         positive("radius", radius)?;
         Ok(Self {
             asperity,
@@ -124,7 +132,10 @@ mod tests {
         let m = Material::new(1e11, 0.3, 1e9).unwrap();
         assert!(Pair::new(m, None, 0.0).is_err());
         let msg = Material::new(1e11, 0.7, 1e9).unwrap_err().to_string();
-        assert!(msg.contains("poisson_ratio") && msg.contains("0.7"), "{msg}");
+        assert!(
+            msg.contains("poisson_ratio") && msg.contains("0.7"),
+            "{msg}"
+        );
     }
 
     #[test]

@@ -127,6 +127,38 @@ pub fn brent_with_values<F: FnMut(f64) -> f64>(
     })
 }
 
+/// Minimum of f on [a, b] by golden-section search to an interval `tol`; returns
+/// (x, f(x)). Exact for unimodal f; otherwise a local minimum.
+pub fn golden_min(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, tol: f64) -> (f64, f64) {
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let mut c = b - r * (b - a);
+    let mut d = a + r * (b - a);
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..200 {
+        if (b - a).abs() <= tol {
+            break;
+        }
+        if fc < fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - r * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + r * (b - a);
+            fd = f(d);
+        }
+    }
+    if fc < fd {
+        (c, fc)
+    } else {
+        (d, fd)
+    }
+}
+
 /// Result of [`integrate`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Integral {
@@ -318,9 +350,16 @@ mod tests {
             let g = GaussLegendre::new(n);
             let deg = 2 * n - 1;
             let v = g.integrate(|x| x.powi(deg as i32) + x.powi(deg as i32 - 1), 0.0, 2.0);
-            let exact = 2f64.powi(deg as i32 + 1) / (deg as f64 + 1.0) + 2f64.powi(deg as i32) / deg as f64;
+            let exact =
+                2f64.powi(deg as i32 + 1) / (deg as f64 + 1.0) + 2f64.powi(deg as i32) / deg as f64;
             assert!((v / exact - 1.0).abs() < 1e-13, "n={n}: {v} vs {exact}");
         }
+    }
+
+    #[test]
+    fn golden_section_finds_a_parabola_vertex() {
+        let (x, fx) = golden_min(&|x| (x - 0.3) * (x - 0.3) + 2.0, -1.0, 1.0, 1e-12);
+        assert!((x - 0.3).abs() < 1e-9 && (fx - 2.0).abs() < 1e-15);
     }
 
     #[test]

@@ -71,7 +71,13 @@ impl HeightTable {
         let i = (x.floor().max(0.0) as usize).min(n - 2);
         let (a, b) = (self.values[i], self.values[i + 1]);
         if a == f64::NEG_INFINITY || b == f64::NEG_INFINITY {
-            return if x - i as f64 >= 1.0 { b } else if x <= i as f64 { a } else { a.min(b) };
+            return if x - i as f64 >= 1.0 {
+                b
+            } else if x <= i as f64 {
+                a
+            } else {
+                a.min(b)
+            };
         }
         a + (b - a) * (x - i as f64)
     }

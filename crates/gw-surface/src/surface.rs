@@ -43,7 +43,12 @@ pub struct GreenwoodWilliamson<M> {
 impl<M: AsperityModel> GreenwoodWilliamson<M> {
     /// A surface of `asperity` with height standard deviation `sigma_s` (m, > 0) and
     /// `density` (1/m^2, > 0).
-    pub fn new(asperity: M, sigma_s: f64, density: f64, quadrature: Quadrature) -> Result<Self, GwError> {
+    pub fn new(
+        asperity: M,
+        sigma_s: f64,
+        density: f64,
+        quadrature: Quadrature,
+    ) -> Result<Self, GwError> {
         let check = |field, v: f64| {
             if v.is_finite() && v > 0.0 {
                 Ok(v)
@@ -68,7 +73,10 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
                 }
                 8
             }
-            Quadrature::GaussLegendre { nodes, panel_sigmas } => {
+            Quadrature::GaussLegendre {
+                nodes,
+                panel_sigmas,
+            } => {
                 if !(1..=200).contains(&nodes) {
                     return Err(GwError::Invalid {
                         field: "nodes",
@@ -111,7 +119,12 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
     where
         M: Clone,
     {
-        Self::new(self.asperity.clone(), self.sigma_s, self.density, quadrature)
+        Self::new(
+            self.asperity.clone(),
+            self.sigma_s,
+            self.density,
+            quadrature,
+        )
     }
 
     /// Gaussian mass beyond the truncation, both tails: 2 Q(TAIL_SIGMAS).
@@ -134,17 +147,35 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
 
     fn force_at(&self, h: f64, d: f64, history: &GwHistory, path: Path) -> Result<f64, GwError> {
         self.asperity
-            .force(h - d, self.history_at(history, h), Self::asperity_path(h, path))
-            .map_err(|source| GwError::Asperity { height: h, d, source })
+            .force(
+                h - d,
+                self.history_at(history, h),
+                Self::asperity_path(h, path),
+            )
+            .map_err(|source| GwError::Asperity {
+                height: h,
+                d,
+                source,
+            })
     }
 
     fn law<T>(&self, h: f64, d: f64, r: Result<T, LawError>) -> Result<T, GwError> {
-        r.map_err(|source| GwError::Asperity { height: h, d, source })
+        r.map_err(|source| GwError::Asperity {
+            height: h,
+            d,
+            source,
+        })
     }
 
     /// Lowest height where `g` (increasing in h) turns non-negative within [lo, hi];
     /// None if g < 0 everywhere there.
-    fn edge(&self, what: &'static str, g: &dyn Fn(f64) -> Result<f64, GwError>, lo: f64, hi: f64) -> Result<Option<f64>, GwError> {
+    fn edge(
+        &self,
+        what: &'static str,
+        g: &dyn Fn(f64) -> Result<f64, GwError>,
+        lo: f64,
+        hi: f64,
+    ) -> Result<Option<f64>, GwError> {
         let g_hi = g(hi)?;
         if g_hi < 0.0 {
             return Ok(None);
@@ -161,7 +192,15 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
                 f64::NAN
             }
         };
-        let r = contact_core::numeric::brent_with_values(what, f, (lo, g_lo), (hi, g_hi), 0.0, 1e-15 * self.sigma_s, 200);
+        let r = contact_core::numeric::brent_with_values(
+            what,
+            f,
+            (lo, g_lo),
+            (hi, g_hi),
+            0.0,
+            1e-15 * self.sigma_s,
+            200,
+        );
         if let Some(e) = err.into_inner() {
             return Err(e);
         }
@@ -171,7 +210,12 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
     /// Break points of the height integral at separation d: the contact edge first, then
     /// the kinks at yield onset and at delta = delta_res, then the top of the range.
     /// None when no asperity is in contact.
-    pub fn breakpoints(&self, d: f64, history: &GwHistory, path: Path) -> Result<Option<Vec<f64>>, GwError> {
+    pub fn breakpoints(
+        &self,
+        d: f64,
+        history: &GwHistory,
+        path: Path,
+    ) -> Result<Option<Vec<f64>>, GwError> {
         let top = TAIL_SIGMAS * self.sigma_s;
         let bottom = -top;
         let a = &self.asperity;
@@ -214,7 +258,10 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
             }
         }
         // Kinks of each asperity's law: heights where h - d = kink_i(history(h)).
-        let n_kinks = self.law(top, d, a.kinks(hist_eff(top)))?.len().max(self.law(edge, d, a.kinks(hist_eff(edge)))?.len());
+        let n_kinks = self
+            .law(top, d, a.kinks(hist_eff(top)))?
+            .len()
+            .max(self.law(edge, d, a.kinks(hist_eff(edge)))?.len());
         for i in 0..n_kinks {
             let g = |h: f64| -> Result<f64, GwError> {
                 let k = self.law(h, d, a.kinks(hist_eff(h)))?;
@@ -234,7 +281,12 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
 
     /// Pressure (Pa) with the quadrature's error estimate (Pa) and the number of
     /// asperity-law evaluations.
-    pub fn pressure_detailed(&self, d: f64, history: &GwHistory, path: Path) -> Result<(f64, f64, u32), GwError> {
+    pub fn pressure_detailed(
+        &self,
+        d: f64,
+        history: &GwHistory,
+        path: Path,
+    ) -> Result<(f64, f64, u32), GwError> {
         if !d.is_finite() {
             return Err(GwError::Invalid {
                 field: "separation",
@@ -261,7 +313,9 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         };
         let us: Vec<f64> = points.iter().map(|h| h / sigma).collect();
         let (value, error) = match self.quadrature {
-            Quadrature::GaussLegendre { panel_sigmas, .. } => (self.gauss_legendre(&f, &us, panel_sigmas), f64::NAN),
+            Quadrature::GaussLegendre { panel_sigmas, .. } => {
+                (self.gauss_legendre(&f, &us, panel_sigmas), f64::NAN)
+            }
             Quadrature::Adaptive { rel_tol } => {
                 // scale of the integral of |F| phi from a cheap pass, for a relative tolerance
                 let scale: f64 = self.gauss_legendre(&|u: f64| f(u).abs(), &us, 1.0);
@@ -307,7 +361,9 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
             for i in 0..n {
                 let lo = a + step * i as f64;
                 if k == 0 && i == 0 {
-                    total += self.gl.integrate(|t| f(lo + step * t * t) * 2.0 * step * t, 0.0, 1.0);
+                    total += self
+                        .gl
+                        .integrate(|t| f(lo + step * t * t) * 2.0 * step * t, 0.0, 1.0);
                 } else {
                     total += self.gl.integrate(f, lo, lo + step);
                 }
@@ -339,7 +395,11 @@ impl<M: AsperityModel> SurfaceLaw for GreenwoodWilliamson<M> {
         let deformed = self.asperity.jumps(AsperityHistory {
             delta_max: history.delta_max(top),
         })?;
-        let lowest = virgin.jump_in.min(virgin.jump_out).min(deformed.jump_out).min(deformed.jump_in);
+        let lowest = virgin
+            .jump_in
+            .min(virgin.jump_out)
+            .min(deformed.jump_out)
+            .min(deformed.jump_in);
         Ok(top - lowest)
     }
 
@@ -354,4 +414,3 @@ impl<M: AsperityModel> SurfaceLaw for GreenwoodWilliamson<M> {
         }
     }
 }
-

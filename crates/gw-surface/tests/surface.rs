@@ -61,11 +61,20 @@ fn dmt_surface_matches_an_independent_integral() {
         let p = gw.pressure(d, &GwHistory::VIRGIN, Path::Approach).unwrap();
         let adh = 2.0 * PI * w * R;
         // contact part (Hertz - 2 pi w R) over h >= d, Dugdale ramp over d - z0 < h < d
-        let contact = independent(t, |x: f64| pair.k() * R.sqrt() * (x * SIGMA).powf(1.5) - adh);
+        let contact = independent(t, |x: f64| {
+            pair.k() * R.sqrt() * (x * SIGMA).powf(1.5) - adh
+        });
         let gl = GaussLegendre::new(30);
-        let ramp = gl.integrate(|u| -adh * (1.0 + (u * SIGMA - d) / z0) * phi(u), t - z0 / SIGMA, t);
+        let ramp = gl.integrate(
+            |u| -adh * (1.0 + (u * SIGMA - d) / z0) * phi(u),
+            t - z0 / SIGMA,
+            t,
+        );
         let expect = DENSITY * (contact + ramp);
-        assert!((p - expect).abs() < 1e-9 * expect.abs().max(DENSITY * adh * phi(t)), "t {t}: {p} vs {expect}");
+        assert!(
+            (p - expect).abs() < 1e-9 * expect.abs().max(DENSITY * adh * phi(t)),
+            "t {t}: {p} vs {expect}"
+        );
     }
 }
 
@@ -80,7 +89,9 @@ fn ru_surface(q: Quadrature) -> GreenwoodWilliamson<ElastoPlasticAsperity<Etsion
 fn adaptive_quadrature_converges_to_1e8() {
     let loose = ru_surface(Quadrature::Adaptive { rel_tol: 1e-10 });
     let tight = ru_surface(Quadrature::Adaptive { rel_tol: 1e-13 });
-    let hist = GwHistory::Flat { deepest: 0.5 * SIGMA };
+    let hist = GwHistory::Flat {
+        deepest: 0.5 * SIGMA,
+    };
     for (d, path) in [
         (2.0 * SIGMA, Path::Approach),
         (0.2 * SIGMA, Path::Approach),
@@ -89,20 +100,28 @@ fn adaptive_quadrature_converges_to_1e8() {
     ] {
         let (a, _, _) = loose.pressure_detailed(d, &hist, path).unwrap();
         let (b, _, _) = tight.pressure_detailed(d, &hist, path).unwrap();
-        assert!((a - b).abs() <= 1e-8 * b.abs(), "d {d} {path:?}: {a} vs {b}");
+        assert!(
+            (a - b).abs() <= 1e-8 * b.abs(),
+            "d {d} {path:?}: {a} vs {b}"
+        );
     }
 }
 
 #[test]
 fn gauss_legendre_mode_converges_to_the_adaptive_mode() {
     let acc = ru_surface(Quadrature::Adaptive { rel_tol: 1e-12 });
-    let hist = GwHistory::Flat { deepest: 0.5 * SIGMA };
+    let hist = GwHistory::Flat {
+        deepest: 0.5 * SIGMA,
+    };
     let path = Path::Retract { from: 0.5 * SIGMA };
     let d = 1.2 * SIGMA;
     let exact = acc.pressure(d, &hist, path).unwrap();
     let mut last = f64::INFINITY;
     for nodes in [4, 8, 16, 32] {
-        let gl = ru_surface(Quadrature::GaussLegendre { nodes, panel_sigmas: 0.5 });
+        let gl = ru_surface(Quadrature::GaussLegendre {
+            nodes,
+            panel_sigmas: 0.5,
+        });
         let e = (gl.pressure(d, &hist, path).unwrap() - exact).abs() / exact.abs();
         assert!(e < last.max(1e-12), "nodes {nodes}: error {e} after {last}");
         last = e;
@@ -131,7 +150,13 @@ fn one_number_history_agrees_with_the_general_history() {
 fn elastic_loading_pressure_is_continuous_and_monotone() {
     let pair = ru_pair();
     let mk = MaugisKim::new(pair.k(), 1.0, 0.169e-9).unwrap();
-    let gw = GreenwoodWilliamson::new(ElastoPlasticAsperity::new(Elastic::new(R).unwrap(), mk), SIGMA, DENSITY, Quadrature::default()).unwrap();
+    let gw = GreenwoodWilliamson::new(
+        ElastoPlasticAsperity::new(Elastic::new(R).unwrap(), mk),
+        SIGMA,
+        DENSITY,
+        Quadrature::default(),
+    )
+    .unwrap();
     // compressive region: pressure decreases with d
     let mut prev = f64::INFINITY;
     for i in 0..40 {
@@ -139,7 +164,10 @@ fn elastic_loading_pressure_is_continuous_and_monotone() {
         let p = gw.pressure(d, &GwHistory::VIRGIN, Path::Approach).unwrap();
         if p > 0.0 {
             assert!(p < prev, "d {d}: {p} !< {prev}");
-            assert!(prev == f64::INFINITY || (prev - p) < 0.5 * prev, "jump at d {d}");
+            assert!(
+                prev == f64::INFINITY || (prev - p) < 0.5 * prev,
+                "jump at d {d}"
+            );
         }
         prev = p;
     }

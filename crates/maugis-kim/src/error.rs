@@ -12,7 +12,9 @@ pub enum MkError {
         allowed: &'static str,
     },
     /// A point asked on the stable branch below its turning point.
-    #[error("Delta = {delta} lies below the turning point Delta_t = {turning}: no stable equilibrium")]
+    #[error(
+        "Delta = {delta} lies below the turning point Delta_t = {turning}: no stable equilibrium"
+    )]
     BelowTurningPoint { delta: f64, turning: f64 },
     /// A solver failure (bracket, convergence, non-finite value).
     #[error("Maugis-Kim solver: {0}")]

@@ -152,7 +152,9 @@ impl Jkr {
             return Self::stable_force(delta);
         }
         match path {
-            Path::Retract { from } if from >= 0.0 && delta >= Self::turning_delta() => Self::stable_force(delta),
+            Path::Retract { from } if from >= 0.0 && delta >= Self::turning_delta() => {
+                Self::stable_force(delta)
+            }
             _ => Ok(0.0),
         }
     }

@@ -114,7 +114,7 @@ impl Contact {
         let t = s.atan();
         let m = s.hypot(1.0);
         let s_over = s / (1.0 + m); // (m - 1)/s, no overflow
-        // g1 = s + (m^2 - 2) t = (s - t) + s^2 t
+                                    // g1 = s + (m^2 - 2) t = (s - t) + s^2 t
         let g1 = s_minus_atan(s) + s * s * t;
         // g2 = s t - (m - 1)
         let g2 = s * t - s * s_over;
@@ -270,7 +270,15 @@ impl MdCurve {
             point.stable = true;
             return Ok(Turning { point, u: None });
         };
-        let u = brent_with_values("turning point dDelta/ds = 0", f, lo, hi, 0.0, 1e-14, MAX_ITER)?;
+        let u = brent_with_values(
+            "turning point dDelta/ds = 0",
+            f,
+            lo,
+            hi,
+            0.0,
+            1e-14,
+            MAX_ITER,
+        )?;
         let mut point = Contact::at(l, u.exp()).point(true);
         point.stable = true;
         Ok(Turning { point, u: Some(u) })
@@ -309,7 +317,15 @@ impl MdCurve {
             let u1 = (u0 + step).min(u_hi);
             let f1 = f(u1);
             if f0 < 0.0 && f1 >= 0.0 {
-                let u = brent_with_values("pull-off dFbar/ds = 0", f, (u0, f0), (u1, f1), 0.0, 1e-13, MAX_ITER)?;
+                let u = brent_with_values(
+                    "pull-off dFbar/ds = 0",
+                    f,
+                    (u0, f0),
+                    (u1, f1),
+                    0.0,
+                    1e-13,
+                    MAX_ITER,
+                )?;
                 let p = Contact::at(l, u.exp()).point(true);
                 if p.force < best.force {
                     best = p;
@@ -405,7 +421,15 @@ impl MdCurve {
                 g_lo = g(lo);
             }
         }
-        let u = brent_with_values("Maugis-Dugdale Delta(s) = Delta", g, (lo, g_lo), (hi, g_hi), 0.0, 1e-15, MAX_ITER)?;
+        let u = brent_with_values(
+            "Maugis-Dugdale Delta(s) = Delta",
+            g,
+            (lo, g_lo),
+            (hi, g_hi),
+            0.0,
+            1e-15,
+            MAX_ITER,
+        )?;
         Ok(Contact::at(l, u.exp()).point(true))
     }
 
@@ -445,7 +469,11 @@ impl MdCurve {
         }
         out.push(self.junction());
         let end = self.solve_contact(delta_end.max(self.junction().delta + 1e-6), U_MAX)?;
-        let s_end = (end.c / end.a).mul_add(end.c / end.a, -1.0).max(0.0).sqrt().max(1e-300);
+        let s_end = (end.c / end.a)
+            .mul_add(end.c / end.a, -1.0)
+            .max(0.0)
+            .sqrt()
+            .max(1e-300);
         // start where the contact branch has left the junction by about 1e-6 of C_j
         let u_start = (1e3 / self.c_j.min(1.0)).ln().max(s_end.ln() + 1.0);
         let u_end = s_end.ln();
@@ -460,7 +488,12 @@ impl MdCurve {
 
 /// Expands from u0 in both directions to find (lo, f(lo) < 0) and (hi, f(hi) > 0) with
 /// lo < hi, for a function negative at small u and positive at large u.
-fn bracket_sign_change(f: &dyn Fn(f64) -> f64, u0: f64, u_min: f64, u_max: f64) -> Option<((f64, f64), (f64, f64))> {
+fn bracket_sign_change(
+    f: &dyn Fn(f64) -> f64,
+    u0: f64,
+    u_min: f64,
+    u_max: f64,
+) -> Option<((f64, f64), (f64, f64))> {
     let f0 = f(u0);
     if f0 > 0.0 {
         let (mut hi, mut f_hi) = (u0, f0);

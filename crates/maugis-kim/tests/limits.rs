@@ -38,7 +38,12 @@ fn branches_join_continuously_at_the_junction() {
         assert!((j.delta + 4.0 * lambda / 3.0 * j.c).abs() <= 1e-13 * j.delta.abs());
         // the contact branch tends to the junction as s -> infinity
         let far = c.contact_point(1e7);
-        assert!((far.delta - j.delta).abs() <= 1e-9 * (1.0 + j.delta.abs()), "lambda {lambda}: {} vs {}", far.delta, j.delta);
+        assert!(
+            (far.delta - j.delta).abs() <= 1e-9 * (1.0 + j.delta.abs()),
+            "lambda {lambda}: {} vs {}",
+            far.delta,
+            j.delta
+        );
         assert!((far.force - j.force).abs() <= 1e-9 * (1.0 + j.force.abs()));
         assert!((far.c - j.c).abs() <= 1e-9 * j.c);
         assert!(far.a < 1e-6 * j.c);
@@ -64,7 +69,10 @@ fn turning_point_is_the_minimum_interference_along_the_curve() {
         let c = MdCurve::new(lambda).unwrap();
         let t = c.turning_point().unwrap();
         for p in c.curve(400, 5.0).unwrap() {
-            assert!(p.delta >= t.delta - 1e-12 * t.delta.abs(), "lambda {lambda}: {p:?} below {t:?}");
+            assert!(
+                p.delta >= t.delta - 1e-12 * t.delta.abs(),
+                "lambda {lambda}: {p:?} below {t:?}"
+            );
         }
     }
 }
@@ -99,7 +107,11 @@ fn large_load_is_hertz() {
         let big = 1e3_f64;
         let p = c.stable_point(big).unwrap();
         // Fbar = A^3 - O(A^2), Delta = A^2 - O(A): relative deviation O(1/A)
-        assert!((p.force / big.powf(1.5) - 1.0).abs() < 3.0 * lambda.max(1.0).sqrt() / big.sqrt() + 0.05, "lambda {lambda}: {p:?}");
+        assert!(
+            (p.force / big.powf(1.5) - 1.0).abs()
+                < 3.0 * lambda.max(1.0).sqrt() / big.sqrt() + 0.05,
+            "lambda {lambda}: {p:?}"
+        );
         assert!((p.delta / (p.a * p.a) - 1.0).abs() < 0.1);
     }
 }
@@ -114,10 +126,16 @@ fn equations_8_to_10_hold_to_1e12_across_lambda_and_delta() {
                 continue;
             }
             let p = c.stable_point(delta).unwrap();
-            assert!((p.delta - delta).abs() <= 1e-12 * delta.abs().max(1.0), "lambda {lambda}, Delta {delta}: {p:?}");
+            assert!(
+                (p.delta - delta).abs() <= 1e-12 * delta.abs().max(1.0),
+                "lambda {lambda}, Delta {delta}: {p:?}"
+            );
             if p.branch == Branch::Contact {
                 let (r8, r9, r10) = residuals(lambda, &p);
-                assert!(r8 < 1e-12 && r9 < 1e-12 && r10 < 1e-12, "lambda {lambda} Delta {delta}: {r8:e} {r9:e} {r10:e}");
+                assert!(
+                    r8 < 1e-12 && r9 < 1e-12 && r10 < 1e-12,
+                    "lambda {lambda} Delta {delta}: {r8:e} {r9:e} {r10:e}"
+                );
             }
         }
     }
@@ -129,7 +147,10 @@ fn jkr_law_agrees_with_maugis_kim_at_large_lambda() {
     for delta in [-0.8, -0.5, 0.0, 0.5, 2.0, 10.0] {
         let md = c.force(delta, Path::Retract { from: 20.0 }).unwrap();
         let jkr = Jkr::force_nd(delta, Path::Retract { from: 20.0 }).unwrap();
-        assert!((md - jkr).abs() < 0.03 * (1.0 + jkr.abs()), "Delta {delta}: MD {md} JKR {jkr}");
+        assert!(
+            (md - jkr).abs() < 0.03 * (1.0 + jkr.abs()),
+            "Delta {delta}: MD {md} JKR {jkr}"
+        );
     }
 }
 
@@ -161,7 +182,10 @@ fn dmt_law_agrees_with_maugis_kim_at_small_lambda_in_si() {
     assert!((l1 / l2 - 100.0).abs() < 1e-9);
     // (8/3) sqrt(lambda/pi) x (3/2) A with A up to about 3.5 at delta = 5 nm
     assert!(e1 < 4.0 * (l1 / PI).sqrt() * 3.5, "lambda {l1}: {e1}");
-    assert!(e2 < 0.2 * e1, "error must fall like sqrt(lambda): {e1} at {l1}, {e2} at {l2}");
+    assert!(
+        e2 < 0.2 * e1,
+        "error must fall like sqrt(lambda): {e1} at {l1}, {e2} at {l2}"
+    );
 }
 
 #[test]
@@ -174,9 +198,16 @@ fn path_rule_jump_in_and_jump_out() {
         assert_eq!(c.force(mid, Path::Approach).unwrap(), 0.0);
         let f = c.force(mid, Path::Retract { from: 1.0 }).unwrap();
         assert!(f < 0.0);
-        assert_eq!(c.force(t.delta - 1e-9, Path::Retract { from: 1.0 }).unwrap(), 0.0);
+        assert_eq!(
+            c.force(t.delta - 1e-9, Path::Retract { from: 1.0 })
+                .unwrap(),
+            0.0
+        );
         // never jumped in: retracting from below Delta_in stays at zero
-        assert_eq!(c.force(mid, Path::Retract { from: d_in - 1e-3 }).unwrap(), 0.0);
+        assert_eq!(
+            c.force(mid, Path::Retract { from: d_in - 1e-3 }).unwrap(),
+            0.0
+        );
         // the force just past jump-in is the stable branch
         let fin = c.force(d_in, Path::Approach).unwrap();
         assert!(fin < 0.0);

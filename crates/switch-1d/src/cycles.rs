@@ -1,5 +1,5 @@
 use crate::error::{positive, SwitchError};
-use contact_core::numeric::{brent, GaussLegendre};
+use contact_core::numeric::{brent, golden_min, GaussLegendre};
 use contact_core::{LawError, Path, SurfaceLaw};
 use serde::Serialize;
 use std::cell::RefCell;
@@ -58,7 +58,11 @@ pub fn end_of_impact<S: SurfaceLaw>(
     let top = surface.reach(history)?;
     let scale = surface.length_scale();
     let step = PANEL * scale;
-    let mut kinks: Vec<f64> = surface.kinks(history).into_iter().filter(|&k| k < top).collect();
+    let mut kinks: Vec<f64> = surface
+        .kinks(history)
+        .into_iter()
+        .filter(|&k| k < top)
+        .collect();
     kinks.sort_by(|a, b| b.total_cmp(a));
     let gl = GaussLegendre::new(NODES);
     let err = RefCell::new(None);
@@ -110,7 +114,12 @@ pub struct Unloading {
 /// `d_e`: the curve at `points` separations (uniform from d_e to the reach; none if 0)
 /// and the pull-out pressure, located on a scan and refined by golden section to
 /// 1e-9 of the length scale.
-pub fn unload<S: SurfaceLaw>(surface: &S, history: &S::History, d_e: f64, points: usize) -> Result<Unloading, SwitchError> {
+pub fn unload<S: SurfaceLaw>(
+    surface: &S,
+    history: &S::History,
+    d_e: f64,
+    points: usize,
+) -> Result<Unloading, SwitchError> {
     let top = surface.reach(history)?;
     let path = Path::Retract { from: d_e };
     let n = if points == 0 { 64 } else { points.max(2) };
@@ -125,12 +134,23 @@ pub fn unload<S: SurfaceLaw>(surface: &S, history: &S::History, d_e: f64, points
     let (i_min, p_min) = curve
         .iter()
         .enumerate()
-        .fold((0, f64::INFINITY), |acc, (i, q)| if q.pressure < acc.1 { (i, q.pressure) } else { acc });
+        .fold((0, f64::INFINITY), |acc, (i, q)| {
+            if q.pressure < acc.1 {
+                (i, q.pressure)
+            } else {
+                acc
+            }
+        });
     let (mut d_min, mut p_best) = (curve[i_min].d, p_min);
     if p_min < 0.0 && i_min > 0 && i_min + 1 < n {
         let err = RefCell::new(None);
         let f = |x: f64| law_call(&err, surface.pressure(x, history, path), f64::INFINITY);
-        let (x, fx) = golden_min(&f, curve[i_min - 1].d, curve[i_min + 1].d, 1e-9 * surface.length_scale());
+        let (x, fx) = golden_min(
+            &f,
+            curve[i_min - 1].d,
+            curve[i_min + 1].d,
+            1e-9 * surface.length_scale(),
+        );
         if let Some(e) = err.into_inner() {
             return Err(e.into());
         }
@@ -147,34 +167,6 @@ pub fn unload<S: SurfaceLaw>(surface: &S, history: &S::History, d_e: f64, points
         pull_out_separation: d_min,
         curve,
     })
-}
-
-/// Golden-section minimum of a unimodal f on [a, b] to an interval `tol`.
-fn golden_min(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, tol: f64) -> (f64, f64) {
-    let r = 0.5 * (5f64.sqrt() - 1.0);
-    let mut c = b - r * (b - a);
-    let mut d = a + r * (b - a);
-    let (mut fc, mut fd) = (f(c), f(d));
-    while (b - a).abs() > tol {
-        if fc < fd {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - r * (b - a);
-            fc = f(c);
-        } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + r * (b - a);
-            fd = f(d);
-        }
-    }
-    if fc < fd {
-        (c, fc)
-    } else {
-        (d, fd)
-    }
 }
 
 /// What the cycle runner computes.
@@ -276,7 +268,10 @@ pub fn run_cycles<S: SurfaceLaw>(
         if let Some(prev) = cycles.last() {
             let dp = (unloading.pull_out_pressure - prev.unloading.pull_out_pressure).abs();
             let dd = (d_e - prev.d_e).abs();
-            if accommodated_after.is_none() && dp <= tol * unloading.pull_out_pressure.abs().max(f64::MIN_POSITIVE) && dd <= tol * scale {
+            if accommodated_after.is_none()
+                && dp <= tol * unloading.pull_out_pressure.abs().max(f64::MIN_POSITIVE)
+                && dd <= tol * scale
+            {
                 accommodated_after = Some(prev.cycle);
             }
         }

@@ -30,7 +30,12 @@ impl Switch {
                 allowed: "finite and >= 1".into(),
             });
         }
-        Ok(Self { d0, t_d, eps_r, eps0 })
+        Ok(Self {
+            d0,
+            t_d,
+            eps_r,
+            eps0,
+        })
     }
 
     /// Air gap d0 (m).
@@ -62,7 +67,8 @@ impl Switch {
     pub fn stiffness_for_impact_energy(&self, e_i: f64) -> Result<f64, SwitchError> {
         positive("impact_energy", e_i)?;
         let g = self.effective_gap();
-        let per_ks = 4.0 * g * g * g / 27.0 * (self.eps_r / self.t_d - 1.0 / g) - 0.5 * self.d0 * self.d0;
+        let per_ks =
+            4.0 * g * g * g / 27.0 * (self.eps_r / self.t_d - 1.0 / g) - 0.5 * self.d0 * self.d0;
         if per_ks <= 0.0 {
             return Err(SwitchError::Invalid {
                 field: "d0",
