@@ -40,22 +40,22 @@ pub enum Command {
     /// Maugis-Dugdale curve with the Kim extension, nondimensional (paper eq 7).
     Md {
         /// Transition parameter lambda.
-        #[arg(long, allow_negative_numbers = true)]
+        #[arg(long, allow_hyphen_values = true)]
         lambda: f64,
         /// Points on the curve.
         #[arg(long, default_value_t = 200)]
         points: usize,
         /// Largest interference Delta of the curve.
-        #[arg(long, default_value_t = 5.0, allow_negative_numbers = true)]
+        #[arg(long, default_value_t = 5.0, allow_hyphen_values = true)]
         delta_end: f64,
         /// Print the force at this one interference Delta instead of the curve.
-        #[arg(long, allow_negative_numbers = true)]
+        #[arg(long, allow_hyphen_values = true)]
         delta: Option<f64>,
         /// Path for --delta.
         #[arg(long, value_enum, default_value_t = PathArg::Approach, requires = "delta")]
         path: PathArg,
         /// Largest interference of the excursion for --path retract.
-        #[arg(long, allow_negative_numbers = true)]
+        #[arg(long, allow_hyphen_values = true)]
         from: Option<f64>,
         #[arg(long, value_enum, default_value_t = Format::Json)]
         format: Format,
@@ -66,7 +66,7 @@ pub enum Command {
         #[arg(long)]
         scene: Option<PathBuf>,
         /// Maximum interference (m); repeat for several cases. Replaces the scene's list.
-        #[arg(long = "delta-max", allow_negative_numbers = true)]
+        #[arg(long = "delta-max", allow_hyphen_values = true)]
         delta_max: Vec<f64>,
         #[arg(long, value_enum, default_value_t = Format::Table)]
         format: Format,
@@ -79,7 +79,7 @@ pub enum Command {
         #[arg(long)]
         scene: Option<PathBuf>,
         /// Load to this separation d (m) and unload from it.
-        #[arg(long, allow_negative_numbers = true)]
+        #[arg(long, allow_hyphen_values = true)]
         unload_from: Option<f64>,
         #[arg(long, value_enum)]
         accuracy: Option<Accuracy>,
@@ -209,7 +209,7 @@ pub fn execute(command: Option<Command>) -> Result<String, RunError> {
                 s.delta_max = delta_max;
             }
             s.validate(&name)?;
-            let r = run::asperity(&s)?;
+            let r = run::asperity(&s).map_err(|e| e.in_scene(&name))?;
             if let Some(p) = &plot {
                 output::asperity_plot(&r, p).map_err(|e| plot_err(p, e))?;
             }
@@ -235,7 +235,7 @@ pub fn execute(command: Option<Command>) -> Result<String, RunError> {
                 s.accuracy = a;
             }
             s.validate(&name)?;
-            let r = run::surface(&s)?;
+            let r = run::surface(&s).map_err(|e| e.in_scene(&name))?;
             if let Some(p) = &plot {
                 output::surface_plot(&r, p).map_err(|e| plot_err(p, e))?;
             }
@@ -268,7 +268,7 @@ pub fn execute(command: Option<Command>) -> Result<String, RunError> {
                 s.accuracy = a;
             }
             s.validate(&name)?;
-            let r = run::switch(&s)?;
+            let r = run::switch(&s).map_err(|e| e.in_scene(&name))?;
             let mut text = match format {
                 Format::Json => output::json(&r),
                 Format::Csv => output::switch_cycles_csv(&r),

@@ -19,6 +19,15 @@ pub enum RunError {
 }
 
 impl RunError {
+    /// The same error, prefixed with the scene it came from.
+    pub fn in_scene(self, file: &str) -> Self {
+        match self {
+            RunError::Input(m) => RunError::Input(format!("{file}: {m}")),
+            RunError::Numeric(m) => RunError::Numeric(format!("{file}: {m}")),
+            e => e,
+        }
+    }
+
     /// Exit status: 2 for bad input, 1 for a numerical failure.
     pub fn exit_code(&self) -> i32 {
         match self {
