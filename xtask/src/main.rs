@@ -1,1 +1,106 @@
-fn main() {}
+//! `cargo xtask verify [--update]`: solves every embedded scene and compares its curves
+//! and figures with the insta snapshots in `xtask/snapshots/`.
+//!
+//! Tolerance: every number is rounded to 7 significant digits before comparison, so a
+//! change below about 5e-8 relative passes and anything larger shows up as a readable
+//! line diff. `--update` accepts the new values (review the diff in git).
+
+use serde_json::Value;
+use stiction::run;
+use stiction::scene::{self, AsperityScene, SurfaceScene, SwitchScene};
+use std::process::ExitCode;
+
+const DIGITS: i32 = 7;
+/// Points per curve in the snapshots: enough to see every branch, few enough to review.
+const POINTS: usize = 41;
+
+/// Rounds every number in a JSON tree to `DIGITS` significant digits.
+fn round(v: Value) -> Value {
+    match v {
+        Value::Number(n) => {
+            let x = n.as_f64().unwrap_or(0.0);
+            if x == 0.0 || !x.is_finite() {
+                return Value::Number(n);
+            }
+            let r: f64 = format!("{:.*e}", (DIGITS - 1) as usize, x).parse().unwrap_or(x);
+            serde_json::Number::from_f64(r).map_or(Value::Null, Value::Number)
+        }
+        Value::Array(a) => Value::Array(a.into_iter().map(round).collect()),
+        Value::Object(o) => Value::Object(o.into_iter().map(|(k, v)| (k, round(v))).collect()),
+        other => other,
+    }
+}
+
+fn scenes() -> Result<Vec<(String, Value)>, String> {
+    let err = |e: run::RunError| e.to_string();
+    let mut out = Vec::new();
+    for lambda in [0.01, 0.1, 0.5, 0.9, 1.0, 2.0, 10.0, 100.0] {
+        let r = run::md(lambda, POINTS, 5.0).map_err(err)?;
+        out.push((format!("md_lambda_{lambda}"), serde_json::to_value(r).map_err(|e| e.to_string())?));
+    }
+    let mut a: AsperityScene = scene::parse("asperity", scene::DEFAULT_ASPERITY).map_err(|e| e.to_string())?;
+    a.points = POINTS;
+    out.push(("asperity_fig2".into(), serde_json::to_value(run::asperity(&a).map_err(err)?).unwrap()));
+    let mut s: SurfaceScene = scene::parse("surface", scene::DEFAULT_SURFACE).map_err(|e| e.to_string())?;
+    s.points = POINTS;
+    out.push(("surface_ru".into(), serde_json::to_value(run::surface(&s).map_err(err)?).unwrap()));
+    let mut w: SwitchScene = scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
+    w.points = POINTS;
+    let r = run::switch(&w).map_err(err)?;
+    let mut v = serde_json::to_value(&r).unwrap();
+    // the elastic comparison gets a snapshot of its own
+    let elastic = v.as_object_mut().and_then(|o| o.remove("elastic")).unwrap_or(Value::Null);
+    out.push(("switch_fig4".into(), v));
+    out.push(("switch_elastic_comparison".into(), elastic));
+    Ok(out)
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let update = match args.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
+        ["verify"] => false,
+        ["verify", "--update"] => true,
+        _ => {
+            eprintln!("usage: cargo xtask verify [--update]");
+            return ExitCode::from(2);
+        }
+    };
+    // insta reads its mode from the environment: compare only, or accept everything.
+    std::env::set_var("INSTA_UPDATE", if update { "always" } else { "no" });
+    std::env::set_var("INSTA_FORCE_PASS", "0");
+    let scenes = match scenes() {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: a scene failed to solve: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    let mut failed = Vec::new();
+    for (name, value) in scenes {
+        let value = round(value);
+        let ok = std::panic::catch_unwind(|| {
+            let mut settings = insta::Settings::clone_current();
+            settings.set_snapshot_path(concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"));
+            settings.set_prepend_module_to_snapshot(false);
+            settings.set_omit_expression(true);
+            settings.bind(|| insta::assert_json_snapshot!(name.as_str(), value));
+        });
+        match ok {
+            Ok(()) => println!("ok       {name}"),
+            Err(_) => {
+                println!("CHANGED  {name}");
+                failed.push(name);
+            }
+        }
+    }
+    if failed.is_empty() {
+        println!("verify: every scene matches its snapshot ({DIGITS} significant digits)");
+        ExitCode::SUCCESS
+    } else if update {
+        println!("verify --update: accepted new snapshots for {failed:?}");
+        ExitCode::SUCCESS
+    } else {
+        eprintln!("verify: {} scene(s) changed: {failed:?}; if intended, run `cargo xtask verify --update` and review the diff", failed.len());
+        ExitCode::from(1)
+    }
+}
