@@ -126,7 +126,7 @@ impl PlasticityLaw for EtsionKadin {
     }
 
     /// R_eff = R_res - 1.275 (1 - c1)(S_Y/E)^0.216 (omega - 1) R f(x),
-    /// x = (delta - delta_res)/(delta_max - delta_res) clamped to [0, 1] (eq 12).
+    /// x = (delta - delta_res)/(delta_max - delta_res) capped at 1 (eq 12); R_res at x <= 0.
     fn effective_radius(&self, state: &PlasticState, delta: f64) -> f64 {
         if state.delta_res <= 0.0 || delta <= state.delta_res {
             return state.r_res;

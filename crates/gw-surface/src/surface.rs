@@ -322,7 +322,7 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
                 if let Some(e) = err.borrow_mut().take() {
                     return Err(e);
                 }
-                let tol = (rel_tol * scale / us.len() as f64).max(f64::MIN_POSITIVE);
+                let tol = (rel_tol * scale / (us.len() - 1) as f64).max(f64::MIN_POSITIVE);
                 let mut total = 0.0;
                 let mut error = 0.0;
                 for w in us.windows(2) {

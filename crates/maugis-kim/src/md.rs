@@ -469,18 +469,30 @@ impl MdCurve {
         }
         out.push(self.junction());
         let end = self.solve_contact(delta_end.max(self.junction().delta + 1e-6), U_MAX)?;
-        let s_end = (end.c / end.a)
-            .mul_add(end.c / end.a, -1.0)
-            .max(0.0)
-            .sqrt()
-            .max(1e-300);
-        // start where the contact branch has left the junction by about 1e-6 of C_j
-        let u_start = (1e3 / self.c_j.min(1.0)).ln().max(s_end.ln() + 1.0);
-        let u_end = s_end.ln();
+        let u_end = end.s.max(1e-300).ln();
+        // A = C/m: beyond s = 1e3 the contact branch is the junction to 1e-3 of C_j
+        let u_start = 1e3f64.ln().max(u_end + 1.0);
         let n_c = n - out.len();
-        for i in 1..=n_c {
-            let u = u_start + (u_end - u_start) * i as f64 / n_c as f64;
-            out.push(self.contact_point(u.exp()));
+        // half the points on the unstable part (junction to turning point), half on the
+        // stable part, each log-spaced in s, so that large lambda (small s_t) is resolved
+        let turning_u = self.turning()?.u.filter(|&u| u < u_start && u > u_end);
+        let mut push = |from: f64, to: f64, k: usize, include_start: bool| {
+            for i in 0..k {
+                let f = if include_start { i as f64 / k as f64 } else { (i + 1) as f64 / k as f64 };
+                out.push(self.contact_point((from + (to - from) * f).exp()));
+            }
+        };
+        match turning_u {
+            Some(u_t) => {
+                let k1 = n_c / 2;
+                push(u_start, u_t, k1, true);
+                push(u_t, u_end, n_c - k1, true);
+            }
+            None => push(u_start, u_end, n_c, false),
+        }
+        if let Some(last) = out.last_mut() {
+            // end exactly at the requested interference
+            *last = end;
         }
         Ok(out)
     }

@@ -7,7 +7,8 @@
 //!   a chosen impact energy at U = V_PI.
 //! * [`end_of_impact`]: the separation d_e of eq 17.
 //! * [`run_cycles`]: loading/unloading cycles on any [`contact_core::SurfaceLaw`], pull-out
-//!   pressure per cycle, accommodation, and the stiction verdict.
+//!   pressure per cycle and accommodation; [`Switch::restoring_pressure`] is what the
+//!   pull-out pressure is compared with for the stiction verdict.
 
 mod cycles;
 mod error;
