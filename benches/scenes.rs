@@ -9,15 +9,18 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("scenes");
     g.sample_size(10);
     let a: AsperityScene = scene::parse("bench", scene::DEFAULT_ASPERITY).unwrap();
-    g.bench_function("asperity Fig 2, 3 cases x 200 points", |b| b.iter(|| run::asperity(&a).unwrap()));
+    g.bench_function("asperity Fig 2, 3 cases x 200 points", |b| {
+        b.iter(|| run::asperity(&a).unwrap())
+    });
     for acc in [Accuracy::Accurate, Accuracy::Balanced, Accuracy::Fast] {
         for points in [0usize, 200] {
             let mut s: SwitchScene = scene::parse("bench", scene::DEFAULT_SWITCH).unwrap();
             s.accuracy = acc;
             s.points = points;
-            g.bench_function(format!("switch 10 cycles + elastic, {acc:?}, {points} curve points"), |b| {
-                b.iter(|| run::switch(&s).unwrap())
-            });
+            g.bench_function(
+                format!("switch 10 cycles + elastic, {acc:?}, {points} curve points"),
+                |b| b.iter(|| run::switch(&s).unwrap()),
+            );
         }
     }
     g.finish();

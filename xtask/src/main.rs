@@ -8,9 +8,9 @@
 //! snapshots that are out of tolerance (review the diff in git).
 
 use serde_json::Value;
+use std::process::ExitCode;
 use stiction::run;
 use stiction::scene::{self, AsperityScene, SurfaceScene, SwitchScene};
-use std::process::ExitCode;
 
 const DIGITS: i32 = 7;
 /// Points per curve in the snapshots: enough to see every branch, few enough to review.
@@ -24,7 +24,9 @@ fn round(v: Value) -> Value {
             if x == 0.0 || !x.is_finite() {
                 return Value::Number(n);
             }
-            let r: f64 = format!("{:.*e}", (DIGITS - 1) as usize, x).parse().unwrap_or(x);
+            let r: f64 = format!("{:.*e}", (DIGITS - 1) as usize, x)
+                .parse()
+                .unwrap_or(x);
             serde_json::Number::from_f64(r).map_or(Value::Null, Value::Number)
         }
         Value::Array(a) => Value::Array(a.into_iter().map(round).collect()),
@@ -49,12 +51,19 @@ fn max_abs(v: &Value) -> f64 {
 fn close(a: &Value, b: &Value, atol: f64) -> bool {
     match (a, b) {
         (Value::Number(x), Value::Number(y)) => {
-            let (x, y) = (x.as_f64().unwrap_or(f64::NAN), y.as_f64().unwrap_or(f64::NAN));
+            let (x, y) = (
+                x.as_f64().unwrap_or(f64::NAN),
+                y.as_f64().unwrap_or(f64::NAN),
+            );
             (x - y).abs() <= RTOL * x.abs().max(y.abs()) + atol
         }
-        (Value::Array(x), Value::Array(y)) => x.len() == y.len() && x.iter().zip(y).all(|(p, q)| close(p, q, atol)),
+        (Value::Array(x), Value::Array(y)) => {
+            x.len() == y.len() && x.iter().zip(y).all(|(p, q)| close(p, q, atol))
+        }
         (Value::Object(x), Value::Object(y)) => {
-            x.len() == y.len() && x.iter().all(|(k, p)| y.get(k).is_some_and(|q| close(p, q, atol)))
+            x.len() == y.len()
+                && x.iter()
+                    .all(|(k, p)| y.get(k).is_some_and(|q| close(p, q, atol)))
         }
         _ => a == b,
     }
@@ -74,20 +83,35 @@ fn scenes() -> Result<Vec<(String, Value)>, String> {
     let mut out = Vec::new();
     for lambda in [0.01, 0.1, 0.5, 0.9, 1.0, 2.0, 10.0, 100.0] {
         let r = run::md(lambda, POINTS, 5.0).map_err(err)?;
-        out.push((format!("md_lambda_{lambda}"), serde_json::to_value(r).map_err(|e| e.to_string())?));
+        out.push((
+            format!("md_lambda_{lambda}"),
+            serde_json::to_value(r).map_err(|e| e.to_string())?,
+        ));
     }
-    let mut a: AsperityScene = scene::parse("asperity", scene::DEFAULT_ASPERITY).map_err(|e| e.to_string())?;
+    let mut a: AsperityScene =
+        scene::parse("asperity", scene::DEFAULT_ASPERITY).map_err(|e| e.to_string())?;
     a.points = POINTS;
-    out.push(("asperity_fig2".into(), serde_json::to_value(run::asperity(&a).map_err(err)?).unwrap()));
-    let mut s: SurfaceScene = scene::parse("surface", scene::DEFAULT_SURFACE).map_err(|e| e.to_string())?;
+    out.push((
+        "asperity_fig2".into(),
+        serde_json::to_value(run::asperity(&a).map_err(err)?).unwrap(),
+    ));
+    let mut s: SurfaceScene =
+        scene::parse("surface", scene::DEFAULT_SURFACE).map_err(|e| e.to_string())?;
     s.points = POINTS;
-    out.push(("surface_ru".into(), serde_json::to_value(run::surface(&s).map_err(err)?).unwrap()));
-    let mut w: SwitchScene = scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
+    out.push((
+        "surface_ru".into(),
+        serde_json::to_value(run::surface(&s).map_err(err)?).unwrap(),
+    ));
+    let mut w: SwitchScene =
+        scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
     w.points = POINTS;
     let r = run::switch(&w).map_err(err)?;
     let mut v = serde_json::to_value(&r).unwrap();
     // the elastic comparison gets a snapshot of its own
-    let elastic = v.as_object_mut().and_then(|o| o.remove("elastic")).unwrap_or(Value::Null);
+    let elastic = v
+        .as_object_mut()
+        .and_then(|o| o.remove("elastic"))
+        .unwrap_or(Value::Null);
     out.push(("switch_fig4".into(), v));
     out.push(("switch_elastic_comparison".into(), elastic));
     Ok(out)
@@ -95,7 +119,12 @@ fn scenes() -> Result<Vec<(String, Value)>, String> {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let update = match args.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
+    let update = match args
+        .iter()
+        .map(String::as_str)
+        .collect::<Vec<_>>()
+        .as_slice()
+    {
         ["verify"] => false,
         ["verify", "--update"] => true,
         _ => {

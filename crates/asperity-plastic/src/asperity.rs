@@ -68,7 +68,7 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         })
     }
 
-    /// delta_res, where R_eff switches from R_res to eq 12, and the
+    /// delta_res where R_eff switches from R_res to eq 12 (once yielded, listed last), and the
     /// adhesion law's kinks, shifted by delta_res.
     fn kinks(&self, history: AsperityHistory) -> Result<Vec<f64>, LawError> {
         let st = self.plasticity.state(history.delta_max);
@@ -78,9 +78,8 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
             .into_iter()
             .map(|x| x + st.delta_res)
             .collect();
-        // listed for every asperity that can yield, so that the list has the same
-        // length at every height (delta_res = 0 before yield)
-        if self.plasticity.critical_interference().is_finite() {
+        // only once yielded: before, R_eff = R and nothing bends at delta = 0
+        if st.delta_res > 0.0 {
             k.push(st.delta_res);
         }
         Ok(k)

@@ -10,8 +10,20 @@ const SIGMA: f64 = 7.78e-9;
 fn modes() -> [(&'static str, Quadrature); 3] {
     [
         ("accurate", Quadrature::Adaptive { rel_tol: 1e-10 }),
-        ("balanced", Quadrature::GaussLegendre { nodes: 12, panel_sigmas: 0.5 }),
-        ("fast", Quadrature::GaussLegendre { nodes: 6, panel_sigmas: 1.0 }),
+        (
+            "balanced",
+            Quadrature::GaussLegendre {
+                nodes: 12,
+                panel_sigmas: 0.5,
+            },
+        ),
+        (
+            "fast",
+            Quadrature::GaussLegendre {
+                nodes: 6,
+                panel_sigmas: 1.0,
+            },
+        ),
     ]
 }
 
@@ -22,7 +34,9 @@ fn bench(c: &mut Criterion) {
         EtsionKadin::new(&pair, YieldModulus::Composite).unwrap(),
         MaugisKim::new(pair.k(), 1.0, 0.169e-9).unwrap(),
     );
-    let hist = GwHistory::Flat { deepest: 1.25 * SIGMA };
+    let hist = GwHistory::Flat {
+        deepest: 1.25 * SIGMA,
+    };
     let path = Path::Retract { from: 1.25 * SIGMA };
     for (name, q) in modes() {
         let gw = GreenwoodWilliamson::new(asp, SIGMA, 1e13, q).unwrap();
@@ -34,7 +48,10 @@ fn bench(c: &mut Criterion) {
         g.bench_function(format!("200 points {name}"), |b| {
             b.iter(|| {
                 (0..200)
-                    .map(|i| gw.pressure(1.25 * SIGMA + 8.0 * SIGMA * i as f64 / 199.0, &hist, path).unwrap())
+                    .map(|i| {
+                        gw.pressure(1.25 * SIGMA + 8.0 * SIGMA * i as f64 / 199.0, &hist, path)
+                            .unwrap()
+                    })
                     .sum::<f64>()
             })
         });

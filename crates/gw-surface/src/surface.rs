@@ -265,7 +265,8 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         for i in 0..n_kinks {
             let g = |h: f64| -> Result<f64, GwError> {
                 let k = self.law(h, d, a.kinks(hist_eff(h)))?;
-                // an asperity without this kink (not yet yielded) lies below it
+                // an asperity without this kink (delta_res before yield) counts as below it;
+                // above the yield height h - d - delta_res increases with h
                 Ok(k.get(i).map_or(-self.sigma_s, |&x| h - d - x))
             };
             if let Some(h_k) = self.edge("kink height", &g, edge, top)? {

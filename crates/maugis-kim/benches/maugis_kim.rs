@@ -11,15 +11,24 @@ fn bench(c: &mut Criterion) {
                 curve.stable_point(black_box(1.234)).unwrap().force
             })
         });
-        c.bench_function(&format!("md point on the jump-out window lambda={lambda}"), |b| {
-            b.iter(|| {
-                let curve = MdCurve::new(black_box(lambda)).unwrap();
-                let t = curve.turning_point().unwrap().delta;
-                curve.stable_point(black_box(0.99 * t)).unwrap().force
-            })
-        });
+        c.bench_function(
+            &format!("md point on the jump-out window lambda={lambda}"),
+            |b| {
+                b.iter(|| {
+                    let curve = MdCurve::new(black_box(lambda)).unwrap();
+                    let t = curve.turning_point().unwrap().delta;
+                    curve.stable_point(black_box(0.99 * t)).unwrap().force
+                })
+            },
+        );
         c.bench_function(&format!("md curve 200 points lambda={lambda}"), |b| {
-            b.iter(|| MdCurve::new(black_box(lambda)).unwrap().curve(200, 5.0).unwrap().len())
+            b.iter(|| {
+                MdCurve::new(black_box(lambda))
+                    .unwrap()
+                    .curve(200, 5.0)
+                    .unwrap()
+                    .len()
+            })
         });
     }
 }

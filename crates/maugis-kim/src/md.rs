@@ -478,7 +478,11 @@ impl MdCurve {
         let turning_u = self.turning()?.u.filter(|&u| u < u_start && u > u_end);
         let mut push = |from: f64, to: f64, k: usize, include_start: bool| {
             for i in 0..k {
-                let f = if include_start { i as f64 / k as f64 } else { (i + 1) as f64 / k as f64 };
+                let f = if include_start {
+                    i as f64 / k as f64
+                } else {
+                    (i + 1) as f64 / k as f64
+                };
                 out.push(self.contact_point((from + (to - from) * f).exp()));
             }
         };

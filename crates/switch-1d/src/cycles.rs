@@ -1,5 +1,5 @@
 use crate::error::{positive, SwitchError};
-use contact_core::numeric::{brent, golden_min, GaussLegendre};
+use contact_core::numeric::{brent_with_values, golden_min, GaussLegendre};
 use contact_core::{LawError, Path, SurfaceLaw};
 use serde::Serialize;
 use std::cell::RefCell;
@@ -33,9 +33,12 @@ impl ImpactFilm {
 const NODES: usize = 12;
 const PANEL: f64 = 0.5;
 
-/// The interpolating polynomial through a panel's Gauss-Legendre nodes (barycentric
-/// form): inside the panel where eq 17 closes, the root search reads the pressure off it
-/// instead of solving the surface again.
+/// The interpolating polynomial through a panel's Gauss-Legendre nodes and its two end
+/// points (barycentric form): inside the panel where eq 17 closes, the root search reads
+/// the pressure off it instead of solving the surface again. Passing through the exact
+/// end values keeps the energy at a panel end identical on both sides, so the bracket
+/// found panel by panel is a true bracket even where the film term p^2 t_s/(2E) is a
+/// large part of E_I.
 struct PanelPolynomial {
     x: Vec<f64>,
     y: Vec<f64>,
@@ -45,7 +48,12 @@ struct PanelPolynomial {
 impl PanelPolynomial {
     fn new(x: Vec<f64>, y: Vec<f64>) -> Self {
         let w = (0..x.len())
-            .map(|j| 1.0 / (0..x.len()).filter(|&k| k != j).map(|k| x[j] - x[k]).product::<f64>())
+            .map(|j| {
+                1.0 / (0..x.len())
+                    .filter(|&k| k != j)
+                    .map(|k| x[j] - x[k])
+                    .product::<f64>()
+            })
             .collect();
         Self { x, y, w }
     }
@@ -103,6 +111,7 @@ pub fn end_of_impact<S: SurfaceLaw>(
         None => Ok(()),
     };
     let mut hi = top;
+    let mut p_hi = p(hi);
     let mut work = 0.0; // integral of p_L from hi to top
     let floor = top - 400.0 * scale;
     while hi > floor {
@@ -110,19 +119,38 @@ pub fn end_of_impact<S: SurfaceLaw>(
         if let Some(&k) = kinks.iter().find(|&&k| k < hi && k > lo) {
             lo = k;
         }
-        let (xs, ws): (Vec<f64>, Vec<f64>) = gl.mapped(lo, hi).unzip();
-        let ys: Vec<f64> = xs.iter().map(|&x| p(x)).collect();
+        let (mut xs, ws): (Vec<f64>, Vec<f64>) = gl.mapped(lo, hi).unzip();
+        let mut ys: Vec<f64> = xs.iter().map(|&x| p(x)).collect();
+        let p_lo = p(lo);
         check()?;
         let w_panel: f64 = ws.iter().zip(&ys).map(|(w, y)| w * y).sum();
-        let poly = PanelPolynomial::new(xs, ys);
-        let e_lo = work + w_panel + film.energy(poly.eval(lo));
+        let e_lo = work + w_panel + film.energy(p_lo);
         if e_lo >= impact_energy {
-            // degree NODES - 1 polynomial: the same rule integrates it exactly on [x, hi]
-            let g = |x: f64| work + gl.integrate(|t| poly.eval(t), x, hi) + film.energy(poly.eval(x)) - impact_energy;
-            return Ok(brent("end of impact, eq 17", g, lo, hi, 0.0, 1e-12 * scale, 200)?);
+            xs.extend([lo, hi]);
+            ys.extend([p_lo, p_hi]);
+            let poly = PanelPolynomial::new(xs, ys);
+            // degree NODES + 1 <= 2 NODES - 1: the same rule integrates it exactly
+            let g = |x: f64| {
+                work + gl.integrate(|t| poly.eval(t), x, hi) + film.energy(poly.eval(x))
+                    - impact_energy
+            };
+            let ends = (
+                (lo, e_lo - impact_energy),
+                (hi, work + film.energy(p_hi) - impact_energy),
+            );
+            return Ok(brent_with_values(
+                "end of impact, eq 17",
+                g,
+                ends.0,
+                ends.1,
+                0.0,
+                1e-12 * scale,
+                200,
+            )?);
         }
         work += w_panel;
         hi = lo;
+        p_hi = p_lo;
     }
     Err(SwitchError::EnergyNotAbsorbed {
         energy: impact_energy,
