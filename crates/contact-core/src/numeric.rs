@@ -359,7 +359,10 @@ mod tests {
     #[test]
     fn golden_section_finds_a_parabola_vertex() {
         let (x, fx) = golden_min(&|x| (x - 0.3) * (x - 0.3) + 2.0, -1.0, 1.0, 1e-12);
-        assert!((x - 0.3).abs() < 1e-9 && (fx - 2.0).abs() < 1e-15);
+        // the value is exact to rounding; the location only to sqrt(eps) ~ 1.5e-8, since
+        // f(0.3 + e) = 2 + e^2 rounds to 2 for |e| < 1e-8
+        assert!((fx - 2.0).abs() <= 4.0 * f64::EPSILON, "{fx}");
+        assert!((x - 0.3).abs() < 3e-8, "{x}");
     }
 
     #[test]
