@@ -35,6 +35,14 @@ impl AdhesionLaw for AnyAdhesion {
             AnyAdhesion::MaugisKim(l) => l.jumps(radius),
         }
     }
+    fn jump_in(&self, radius: f64) -> Result<f64, LawError> {
+        match self {
+            AnyAdhesion::Hertz(l) => l.jump_in(radius),
+            AnyAdhesion::Dmt(l) => l.jump_in(radius),
+            AnyAdhesion::Jkr(l) => l.jump_in(radius),
+            AnyAdhesion::MaugisKim(l) => l.jump_in(radius),
+        }
+    }
     fn kinks(&self, radius: f64) -> Result<Vec<f64>, LawError> {
         match self {
             AnyAdhesion::Hertz(l) => l.kinks(radius),

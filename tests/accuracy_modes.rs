@@ -13,18 +13,40 @@ fn surface_scene_modes_stay_within_their_bounds() {
     s.points = 25;
     s.accuracy = Accuracy::Accurate;
     let exact = run::surface(&s).unwrap();
-    let scale = exact.loading.iter().chain(&exact.unloading).map(|p| p.pressure.abs()).fold(0.0, f64::max);
+    let scale = exact
+        .loading
+        .iter()
+        .chain(&exact.unloading)
+        .map(|p| p.pressure.abs())
+        .fold(0.0, f64::max);
     for (mode, bound) in BOUND {
         s.accuracy = mode;
         let r = run::surface(&s).unwrap();
-        for (a, b) in exact.loading.iter().zip(&r.loading).chain(exact.unloading.iter().zip(&r.unloading)) {
+        for (a, b) in exact
+            .loading
+            .iter()
+            .zip(&r.loading)
+            .chain(exact.unloading.iter().zip(&r.unloading))
+        {
             assert_eq!(a.d, b.d);
             // relative to the pressure, or to the curve's scale where the pressure crosses zero
             let err = (a.pressure - b.pressure).abs() / a.pressure.abs().max(1e-3 * scale);
-            assert!(err <= bound, "{mode:?} at d = {}: {} vs {} ({err:e})", a.d, b.pressure, a.pressure);
+            assert!(
+                err <= bound,
+                "{mode:?} at d = {}: {} vs {} ({err:e})",
+                a.d,
+                b.pressure,
+                a.pressure
+            );
         }
-        let (pa, pb) = (exact.pull_out_pressure.unwrap(), r.pull_out_pressure.unwrap());
-        assert!((pa - pb).abs() <= bound * pa, "{mode:?} pull-out {pb} vs {pa}");
+        let (pa, pb) = (
+            exact.pull_out_pressure.unwrap(),
+            r.pull_out_pressure.unwrap(),
+        );
+        assert!(
+            (pa - pb).abs() <= bound * pa,
+            "{mode:?} pull-out {pb} vs {pa}"
+        );
     }
 }
 
@@ -39,8 +61,16 @@ fn switch_scene_modes_stay_within_their_bounds() {
         let r = run::switch(&s).unwrap();
         for (a, b) in exact.cycles.iter().zip(&r.cycles) {
             let e = (a.pull_out_pressure - b.pull_out_pressure).abs() / a.pull_out_pressure;
-            assert!(e <= bound, "{mode:?} cycle {}: pull-out error {e:e}", a.cycle);
-            assert!((a.d_e - b.d_e).abs() <= bound * s.surface.sigma_s, "{mode:?} cycle {}: d_e", a.cycle);
+            assert!(
+                e <= bound,
+                "{mode:?} cycle {}: pull-out error {e:e}",
+                a.cycle
+            );
+            assert!(
+                (a.d_e - b.d_e).abs() <= bound * s.surface.sigma_s,
+                "{mode:?} cycle {}: d_e",
+                a.cycle
+            );
         }
         let (ea, eb) = (exact.elastic.as_ref().unwrap(), r.elastic.as_ref().unwrap());
         assert!((ea.d_e - eb.d_e).abs() <= bound * s.surface.sigma_s);

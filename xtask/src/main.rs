@@ -1,11 +1,14 @@
 //! `cargo xtask verify [--update]`: solves every embedded scene and compares its curves
 //! and figures with the insta snapshots in `xtask/snapshots/`.
+//! `cargo xtask tradeoff`: measures the speed/accuracy trade (docs/performance.md).
 //!
 //! Tolerance: snapshots store numbers rounded to 7 significant digits. A scene passes when
 //! every number agrees with its snapshot within 1e-6 relative, or within 1e-10 of the
 //! largest magnitude in that snapshot (the tails of a curve sit near zero); otherwise
 //! insta prints a readable line diff and verify exits non-zero. `--update` rewrites the
 //! snapshots that are out of tolerance (review the diff in git).
+
+mod tradeoff;
 
 use serde_json::Value;
 use std::process::ExitCode;
@@ -127,8 +130,17 @@ fn main() -> ExitCode {
     {
         ["verify"] => false,
         ["verify", "--update"] => true,
+        ["tradeoff"] => {
+            return match tradeoff::main() {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(1)
+                }
+            };
+        }
         _ => {
-            eprintln!("usage: cargo xtask verify [--update]");
+            eprintln!("usage: cargo xtask verify [--update] | cargo xtask tradeoff");
             return ExitCode::from(2);
         }
     };

@@ -68,6 +68,11 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         })
     }
 
+    fn jump_in(&self, history: AsperityHistory) -> Result<f64, LawError> {
+        let st = self.plasticity.state(history.delta_max);
+        Ok(self.adhesion.jump_in(st.r_res)? + st.delta_res)
+    }
+
     /// delta_res where R_eff switches from R_res to eq 12 (once yielded, listed last), and the
     /// adhesion law's kinks, shifted by delta_res.
     fn kinks(&self, history: AsperityHistory) -> Result<Vec<f64>, LawError> {

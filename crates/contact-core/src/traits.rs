@@ -38,6 +38,11 @@ pub trait AdhesionLaw {
     /// Jump-in and jump-out interferences (m) for a sphere of `radius` (m).
     fn jumps(&self, radius: f64) -> Result<Jumps, LawError>;
 
+    /// Jump-in interference alone (m); override when it is cheaper than [`Self::jumps`].
+    fn jump_in(&self, radius: f64) -> Result<f64, LawError> {
+        Ok(self.jumps(radius)?.jump_in)
+    }
+
     /// Interferences (m) where the force is continuous but not smooth, for a sphere of
     /// `radius` (m). Quadrature over asperity heights splits there.
     fn kinks(&self, radius: f64) -> Result<Vec<f64>, LawError> {
@@ -109,6 +114,11 @@ pub trait AsperityModel {
     /// Jump-in and jump-out interferences (m) of an asperity with this history
     /// (including its permanent loss of height).
     fn jumps(&self, history: AsperityHistory) -> Result<Jumps, LawError>;
+
+    /// Jump-in interference alone (m); override when it is cheaper than [`Self::jumps`].
+    fn jump_in(&self, history: AsperityHistory) -> Result<f64, LawError> {
+        Ok(self.jumps(history)?.jump_in)
+    }
 
     /// Interferences (m) where the force of an asperity with this history has a kink.
     fn kinks(&self, history: AsperityHistory) -> Result<Vec<f64>, LawError> {

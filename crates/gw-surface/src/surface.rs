@@ -228,8 +228,8 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         // Retract: jumped in during the excursion, (h - from) >= jump_in, and not yet
         // out, (h - d) >= jump_out of the state after the excursion.
         let jumped_in = |h: f64| -> Result<f64, GwError> {
-            let j = self.law(h, d, a.jumps(self.history_at(history, h)))?;
-            Ok(h - excursion - j.jump_in)
+            let j = self.law(h, d, a.jump_in(self.history_at(history, h)))?;
+            Ok(h - excursion - j)
         };
         let mut edge = match self.edge("contact edge (jump-in)", &jumped_in, bottom, top)? {
             Some(e) => e,

@@ -235,6 +235,10 @@ impl AdhesionLaw for MaugisKim {
             jump_out: curve.turning_point()?.delta * sc.interference,
         })
     }
+    /// -z0: the rigid gap at the centre equals the Dugdale range (no turning point needed).
+    fn jump_in(&self, _radius: f64) -> Result<f64, LawError> {
+        Ok(-self.z0)
+    }
     /// For lambda <= lambda_c the stable branch passes the junction of the non-contact
     /// and contact branches, where the curvature of F(delta) changes.
     fn kinks(&self, radius: f64) -> Result<Vec<f64>, LawError> {
