@@ -281,6 +281,8 @@ pub struct SurfaceReport {
     /// Magnitude of the most tensile unloading pressure (Pa); null without unloading.
     pub pull_out_pressure: Option<f64>,
     pub pull_out_separation: Option<f64>,
+    /// Fraction of asperities loaded beyond the fits' range (delta_max/delta_CP > 110).
+    pub extrapolated_fraction: f64,
 }
 
 pub fn surface(scene: &SurfaceScene) -> Result<SurfaceReport, RunError> {
@@ -297,6 +299,11 @@ pub fn surface(scene: &SurfaceScene) -> Result<SurfaceReport, RunError> {
             pressure: gw.pressure(d, &virgin, Path::Approach).map_err(numeric)?,
         });
     }
+    // the deepest separation the surface has seen: the loading curve's start, or the
+    // unloading point if deeper
+    let deepest = scene.unload_from.map_or(start, |u| u.min(start));
+    let extrapolated_fraction =
+        gw.fraction_beyond(&gw.load(&virgin, deepest), asperity_plastic::FIT_RANGE_MAX);
     let (unloading, pull, at) = match scene.unload_from {
         Some(d) => {
             let hist = gw.load(&virgin, d);
@@ -317,6 +324,7 @@ pub fn surface(scene: &SurfaceScene) -> Result<SurfaceReport, RunError> {
         unloading,
         pull_out_pressure: pull,
         pull_out_separation: at,
+        extrapolated_fraction,
     })
 }
 
@@ -358,6 +366,9 @@ pub struct SwitchReport {
     pub elastic: Option<ElasticReport>,
     pub accommodated_after: Option<usize>,
     pub stiction: bool,
+    /// Fraction of asperities loaded beyond the fits' range (delta_max/delta_CP > 110)
+    /// after the last cycle.
+    pub extrapolated_fraction: f64,
 }
 
 pub fn switch(scene: &SwitchScene) -> Result<SwitchReport, RunError> {
@@ -397,6 +408,9 @@ pub fn switch(scene: &SwitchScene) -> Result<SwitchReport, RunError> {
         loading_points: scene.points,
     };
     let run = switch_1d::run_cycles(&gw, gw.virgin(), e_i, film, options).map_err(numeric)?;
+    let extrapolated_fraction = run.cycles.last().map_or(0.0, |c| {
+        gw.fraction_beyond(&c.history, asperity_plastic::FIT_RANGE_MAX)
+    });
     let elastic = if scene.elastic_comparison {
         let el = model::surface(&scene.contact, &scene.surface, scene.accuracy, true)?;
         let hist = el.virgin();
@@ -437,5 +451,6 @@ pub fn switch(scene: &SwitchScene) -> Result<SwitchReport, RunError> {
         elastic,
         accommodated_after: run.accommodated_after,
         stiction,
+        extrapolated_fraction,
     })
 }

@@ -133,6 +133,7 @@ fn switch_json_has_the_contract_keys() {
         "elastic",
         "accommodated_after",
         "stiction",
+        "extrapolated_fraction",
     ] {
         assert!(v.get(k).is_some(), "missing {k}");
     }

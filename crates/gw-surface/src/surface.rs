@@ -132,6 +132,29 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         2.0 * self.normal.sf(TAIL_SIGMAS)
     }
 
+    /// Fraction of the asperities whose delta_max exceeds `ratio` delta_CP in `history`
+    /// (for ratio = 110: those the Etsion-Kadin fits extrapolate). Zero if nothing yields.
+    pub fn fraction_beyond(&self, history: &GwHistory, ratio: f64) -> f64 {
+        let dcp = self.asperity.yield_interference();
+        if !dcp.is_finite() {
+            return 0.0;
+        }
+        match history.deepest() {
+            // delta_max(h) = h - deepest > ratio delta_CP above one height
+            Some(deep) if deep.is_finite() => self.normal.sf((deep + ratio * dcp) / self.sigma_s),
+            Some(_) => 0.0,
+            None => {
+                let n = 4000;
+                let du = 2.0 * TAIL_SIGMAS / n as f64;
+                (0..n)
+                    .map(|i| -TAIL_SIGMAS + du * (i as f64 + 0.5))
+                    .filter(|&u| history.delta_max(u * self.sigma_s) > ratio * dcp)
+                    .map(|u| self.normal.pdf(u) * du)
+                    .sum()
+            }
+        }
+    }
+
     fn history_at(&self, history: &GwHistory, h: f64) -> AsperityHistory {
         AsperityHistory {
             delta_max: history.delta_max(h),

@@ -183,3 +183,21 @@ fn history_only_deepens() {
     assert_eq!(h3.deepest(), Some(0.5 * SIGMA));
     assert!(gw.asperity().yield_interference() > 0.0);
 }
+
+#[test]
+fn fraction_beyond_the_fit_range_follows_the_gaussian_tail() {
+    let gw = ru_surface(Quadrature::default());
+    let dcp = gw.asperity().yield_interference();
+    // delta_max(h) = h - deepest exceeds 10 delta_CP above h = deepest + 10 delta_CP
+    let deepest = -10.0 * dcp;
+    let flat = GwHistory::Flat { deepest };
+    assert!((gw.fraction_beyond(&flat, 10.0) - 0.5).abs() < 1e-15);
+    let shifted = GwHistory::Flat {
+        deepest: deepest + SIGMA,
+    };
+    assert!((gw.fraction_beyond(&shifted, 10.0) - 0.15865525393145707).abs() < 1e-9);
+    let table = GwHistory::Table(HeightTable::virgin(-9.0 * SIGMA, 9.0 * SIGMA, 2001))
+        .loaded(deepest + SIGMA);
+    assert!((gw.fraction_beyond(&table, 10.0) - 0.15865525393145707).abs() < 1e-3);
+    assert_eq!(gw.fraction_beyond(&GwHistory::VIRGIN, 10.0), 0.0);
+}

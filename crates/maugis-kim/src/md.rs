@@ -263,7 +263,10 @@ impl MdCurve {
             return Ok(Turning { point, u: None });
         }
         let f = |u: f64| Contact::at(l, u.exp()).d_delta_sign(l);
-        let Some((lo, hi)) = bracket_sign_change(&f, 0.0, U_MIN, U_MAX) else {
+        let bracket = turning_guess(l)
+            .and_then(|g| tight_bracket(&f, g))
+            .or_else(|| bracket_sign_change(&f, 0.0, U_MIN, U_MAX));
+        let Some((lo, hi)) = bracket else {
             // lambda so close to lambda_c that the turning point is the junction to
             // double precision.
             let mut point = self.junction();
@@ -476,23 +479,25 @@ impl MdCurve {
         // half the points on the unstable part (junction to turning point), half on the
         // stable part, each log-spaced in s, so that large lambda (small s_t) is resolved
         let turning_u = self.turning()?.u.filter(|&u| u < u_start && u > u_end);
-        let mut push = |from: f64, to: f64, k: usize, include_start: bool| {
+        // stability is known from the half being sampled, not re-derived from ln(exp(u))
+        let l = self.lambda;
+        let mut push = |from: f64, to: f64, k: usize, include_start: bool, stable: bool| {
             for i in 0..k {
                 let f = if include_start {
                     i as f64 / k as f64
                 } else {
                     (i + 1) as f64 / k as f64
                 };
-                out.push(self.contact_point((from + (to - from) * f).exp()));
+                out.push(Contact::at(l, (from + (to - from) * f).exp()).point(stable));
             }
         };
         match turning_u {
             Some(u_t) => {
                 let k1 = n_c / 2;
-                push(u_start, u_t, k1, true);
-                push(u_t, u_end, n_c - k1, true);
+                push(u_start, u_t, k1, true, false);
+                push(u_t, u_end, n_c - k1, true, true);
             }
-            None => push(u_start, u_end, n_c, false),
+            None => push(u_start, u_end, n_c, false, true),
         }
         if let Some(last) = out.last_mut() {
             // end exactly at the requested interference
@@ -500,6 +505,59 @@ impl MdCurve {
         }
         Ok(out)
     }
+}
+
+/// ln lambda range of the turning-point guide table; outside it the wide search is used.
+const GUIDE_LN_LO: f64 = -0.06; // just above ln lambda_c = -0.0641
+const GUIDE_LN_HI: f64 = 9.3; // lambda ~ 1.1e4
+const GUIDE_N: usize = 512;
+
+/// ln s of the turning point on a grid of ln lambda (lambda > lambda_c), built once per
+/// process by the wide bracket search (about 2 ms). It only seeds the bracket: the turning
+/// point is still solved to 1e-14 in ln s, so results do not depend on the table.
+fn guide() -> &'static [f64] {
+    static GUIDE: OnceLock<Vec<f64>> = OnceLock::new();
+    GUIDE.get_or_init(|| {
+        (0..GUIDE_N)
+            .map(|i| {
+                let l = (GUIDE_LN_LO
+                    + (GUIDE_LN_HI - GUIDE_LN_LO) * i as f64 / (GUIDE_N - 1) as f64)
+                    .exp();
+                let f = |u: f64| Contact::at(l, u.exp()).d_delta_sign(l);
+                bracket_sign_change(&f, 0.0, U_MIN, U_MAX)
+                    .and_then(|(a, b)| {
+                        brent_with_values("turning guide", f, a, b, 0.0, 1e-6, MAX_ITER).ok()
+                    })
+                    .unwrap_or(f64::NAN)
+            })
+            .collect()
+    })
+}
+
+/// Interpolated ln s_t for lambda inside the guide table.
+fn turning_guess(lambda: f64) -> Option<f64> {
+    let x = (lambda.ln() - GUIDE_LN_LO) / (GUIDE_LN_HI - GUIDE_LN_LO) * (GUIDE_N - 1) as f64;
+    if !(x >= 0.0 && x < (GUIDE_N - 1) as f64) {
+        return None;
+    }
+    let g = guide();
+    let i = x as usize;
+    let u = g[i] + (g[i + 1] - g[i]) * (x - i as f64);
+    u.is_finite().then_some(u)
+}
+
+/// A bracket of width 2w around the guess g, widened a few times if needed.
+fn tight_bracket(f: &dyn Fn(f64) -> f64, g: f64) -> Option<((f64, f64), (f64, f64))> {
+    let mut w = 0.01;
+    for _ in 0..4 {
+        let (a, b) = (g - w, g + w);
+        let (fa, fb) = (f(a), f(b));
+        if fa <= 0.0 && fb > 0.0 {
+            return Some(((a, fa), (b, fb)));
+        }
+        w *= 8.0;
+    }
+    None
 }
 
 /// Expands from u0 in both directions to find (lo, f(lo) < 0) and (hi, f(hi) > 0) with
