@@ -188,32 +188,13 @@ fn pull_off<M: AsperityModel>(
             force: m.force(delta, hist, path).map_err(numeric)?,
         });
     }
-    let (i, mut best) = curve
-        .iter()
-        .enumerate()
-        .fold((0, f64::INFINITY), |a, (i, p)| {
-            if p.force < a.1 {
-                (i, p.force)
-            } else {
-                a
-            }
-        });
-    if i > 0 && i + 1 < n {
-        let err = std::cell::RefCell::new(None);
-        let f = |x: f64| match m.force(x, hist, path) {
-            Ok(v) => v,
-            Err(e) => {
-                err.borrow_mut().get_or_insert(e);
-                f64::INFINITY
-            }
-        };
-        let (a, b) = (curve[i + 1].delta, curve[i - 1].delta);
-        let v = contact_core::numeric::golden_min(&f, a, b, 1e-12 * delta_max).1;
-        if let Some(e) = err.into_inner() {
-            return Err(numeric(e));
-        }
-        best = best.min(v);
-    }
+    let samples: Vec<(f64, f64)> = curve.iter().map(|p| (p.delta, p.force)).collect();
+    let (_, best) = contact_core::numeric::refine_sampled_min(
+        &samples,
+        |x| m.force(x, hist, path),
+        1e-12 * delta_max,
+    )
+    .map_err(numeric)?;
     Ok((best, curve))
 }
 

@@ -159,6 +159,40 @@ pub fn golden_min(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, tol: f64) -> (
     }
 }
 
+/// Minimum of a function known on samples `(x_i, y_i)` (x monotone): the smallest
+/// sample, refined by golden section of the fallible `f` between its two neighbours to an
+/// interval `tol`. Returns (x, y); the first error of `f` ends the search.
+pub fn refine_sampled_min<E>(
+    samples: &[(f64, f64)],
+    f: impl Fn(f64) -> Result<f64, E>,
+    tol: f64,
+) -> Result<(f64, f64), E> {
+    let Some((i, &(x0, y0))) = samples
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
+    else {
+        return Ok((f64::NAN, f64::INFINITY));
+    };
+    if i == 0 || i + 1 >= samples.len() {
+        return Ok((x0, y0));
+    }
+    let err = std::cell::RefCell::new(None);
+    let g = |x: f64| match f(x) {
+        Ok(v) => v,
+        Err(e) => {
+            err.borrow_mut().get_or_insert(e);
+            f64::INFINITY
+        }
+    };
+    let (a, b) = (samples[i - 1].0, samples[i + 1].0);
+    let (x, y) = golden_min(&g, a.min(b), a.max(b), tol);
+    if let Some(e) = err.into_inner() {
+        return Err(e);
+    }
+    Ok(if y < y0 { (x, y) } else { (x0, y0) })
+}
+
 /// Result of [`integrate`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Integral {

@@ -1,5 +1,5 @@
 use crate::error::{positive, SwitchError};
-use contact_core::numeric::{brent_with_values, golden_min, GaussLegendre};
+use contact_core::numeric::{brent_with_values, refine_sampled_min, GaussLegendre};
 use contact_core::{LawError, Path, SurfaceLaw};
 use serde::Serialize;
 use std::cell::RefCell;
@@ -191,34 +191,12 @@ pub fn unload<S: SurfaceLaw>(
             pressure: surface.pressure(d, history, path)?,
         });
     }
-    let (i_min, p_min) = curve
-        .iter()
-        .enumerate()
-        .fold((0, f64::INFINITY), |acc, (i, q)| {
-            if q.pressure < acc.1 {
-                (i, q.pressure)
-            } else {
-                acc
-            }
-        });
-    let (mut d_min, mut p_best) = (curve[i_min].d, p_min);
-    if p_min < 0.0 && i_min > 0 && i_min + 1 < n {
-        let err = RefCell::new(None);
-        let f = |x: f64| law_call(&err, surface.pressure(x, history, path), f64::INFINITY);
-        let (x, fx) = golden_min(
-            &f,
-            curve[i_min - 1].d,
-            curve[i_min + 1].d,
-            1e-9 * surface.length_scale(),
-        );
-        if let Some(e) = err.into_inner() {
-            return Err(e.into());
-        }
-        if fx < p_best {
-            d_min = x;
-            p_best = fx;
-        }
-    }
+    let samples: Vec<(f64, f64)> = curve.iter().map(|q| (q.d, q.pressure)).collect();
+    let (d_min, p_best) = refine_sampled_min(
+        &samples,
+        |x| surface.pressure(x, history, path),
+        1e-9 * surface.length_scale(),
+    )?;
     if points == 0 {
         curve.clear();
     }
