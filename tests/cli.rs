@@ -101,7 +101,8 @@ fn scene_print_round_trips_through_every_subcommand_scene() {
     }
 }
 
-fn small_switch_scene(extra: &str) -> std::path::PathBuf {
+/// A cheap switch scene in a file of its own per `tag` (tests run in parallel).
+fn small_switch_scene(tag: &str) -> std::path::PathBuf {
     let text = String::from_utf8(stiction(&["scene", "--print", "switch"]).stdout).unwrap();
     let text = text
         .replace("points = 200", "points = 16")
@@ -115,7 +116,7 @@ fn small_switch_scene(extra: &str) -> std::path::PathBuf {
 
 #[test]
 fn switch_json_has_the_contract_keys() {
-    let f = small_switch_scene("");
+    let f = small_switch_scene("json");
     let v = json(&stiction(&[
         "switch",
         "--scene",
@@ -158,7 +159,7 @@ fn switch_json_has_the_contract_keys() {
 
 #[test]
 fn switch_writes_its_files() {
-    let f = small_switch_scene("");
+    let f = small_switch_scene("files");
     let dir = std::env::temp_dir().join(format!("stiction-out-{}", std::process::id()));
     let out = stiction(&[
         "switch",

@@ -161,6 +161,12 @@ impl Contact {
         phi * m
     }
 
+    /// dDelta/du with u = ln s: s Delta'(s), Delta'(s) = Phi A / D, D = 2PA + Q.
+    fn d_delta_du(&self, lambda: f64) -> f64 {
+        let d = 2.0 * self.p * self.a + self.q;
+        self.s * self.d_delta_sign(lambda) / self.m * self.a / d
+    }
+
     /// A quantity with the sign of dFbar/ds.
     fn d_force_sign(&self, lambda: f64) -> f64 {
         let (s, m, t, a, p, q) = (self.s, self.m, self.t, self.a, self.p, self.q);
@@ -352,6 +358,9 @@ impl MdCurve {
         let junction = self.junction();
         if delta > junction.delta {
             // One root on the whole contact branch (the unstable part lies below Delta_j).
+            if let Some(p) = self.newton_contact(delta) {
+                return Ok(p);
+            }
             return self.solve_contact(delta, U_MAX);
         }
         let turning = self.turning()?;
@@ -375,6 +384,35 @@ impl MdCurve {
             // Between Delta_t and Delta_j the stable root lies below the turning point.
             Some(u_t) => self.solve_contact(delta, u_t),
         }
+    }
+
+    /// Delta(s) = delta for Delta > Delta_j by Newton's method in u = ln s from the
+    /// guide table's estimate; None (the caller then brackets and uses Brent) if the
+    /// iteration leaves the stable side or does not converge in 12 steps. Converged means
+    /// |Delta - delta| <= 4 eps max(1, |delta|) or a step below 1e-15 in u.
+    fn newton_contact(&self, delta: f64) -> Option<MdPoint> {
+        let l = self.lambda;
+        let mut u = contact_guess(l, delta - self.junction().delta)?;
+        let tol = 4.0 * f64::EPSILON * delta.abs().max(1.0);
+        for _ in 0..12 {
+            let c = Contact::at(l, u.exp());
+            let g = c.delta - delta;
+            if g.abs() <= tol {
+                return Some(c.point(true));
+            }
+            let slope = c.d_delta_du(l);
+            if !(slope < 0.0 && slope.is_finite()) {
+                return None;
+            }
+            let step = (g / slope).clamp(-2.0, 2.0);
+            u -= step;
+            if step.abs() <= 1e-15 * u.abs().max(1.0) {
+                let c = Contact::at(l, u.exp());
+                return ((c.delta - delta).abs() <= 1e-13 * delta.abs().max(1.0))
+                    .then(|| c.point(true));
+            }
+        }
+        None
     }
 
     /// Solve Delta(s) = delta for ln s <= u_top, where Delta decreases in s.
@@ -543,6 +581,52 @@ fn turning_guess(lambda: f64) -> Option<f64> {
     let g = guide();
     let i = x as usize;
     let u = g[i] + (g[i + 1] - g[i]) * (x - i as f64);
+    u.is_finite().then_some(u)
+}
+
+/// Grid of the contact-solve guide: ln lambda and y = ln(Delta - Delta_j).
+const CG_L: (f64, f64, usize) = (-7.2, 7.2, 49);
+const CG_Y: (f64, f64, usize) = (-14.0, 10.0, 61);
+
+/// ln s of the contact-branch solution on a grid of (ln lambda, ln(Delta - Delta_j)),
+/// built once per process by the bracketed solver (about 3000 solves, a few ms). Like the
+/// turning-point guide it only seeds Newton's method; results are solved to rounding.
+fn contact_guide() -> &'static [f64] {
+    static GUIDE: OnceLock<Vec<f64>> = OnceLock::new();
+    GUIDE.get_or_init(|| {
+        let mut v = Vec::with_capacity(CG_L.2 * CG_Y.2);
+        for i in 0..CG_L.2 {
+            let l = (CG_L.0 + (CG_L.1 - CG_L.0) * i as f64 / (CG_L.2 - 1) as f64).exp();
+            let c = MdCurve::new(l).expect("grid lambda is valid");
+            let dj = c.junction().delta;
+            for j in 0..CG_Y.2 {
+                let y = CG_Y.0 + (CG_Y.1 - CG_Y.0) * j as f64 / (CG_Y.2 - 1) as f64;
+                let u = c
+                    .solve_contact(dj + y.exp(), U_MAX)
+                    .map_or(f64::NAN, |p| p.s.ln());
+                v.push(u);
+            }
+        }
+        v
+    })
+}
+
+/// Bilinear estimate of ln s for lambda and Delta - Delta_j > 0, inside the guide.
+fn contact_guess(lambda: f64, above_junction: f64) -> Option<f64> {
+    if !(above_junction > 0.0) {
+        return None;
+    }
+    let x = (lambda.ln() - CG_L.0) / (CG_L.1 - CG_L.0) * (CG_L.2 - 1) as f64;
+    let y = (above_junction.ln() - CG_Y.0) / (CG_Y.1 - CG_Y.0) * (CG_Y.2 - 1) as f64;
+    if !(x >= 0.0 && x < (CG_L.2 - 1) as f64 && y >= 0.0 && y < (CG_Y.2 - 1) as f64) {
+        return None;
+    }
+    let g = contact_guide();
+    let (i, j) = (x as usize, y as usize);
+    let (fx, fy) = (x - i as f64, y - j as f64);
+    let at = |i: usize, j: usize| g[i * CG_Y.2 + j];
+    let u = (1.0 - fx) * ((1.0 - fy) * at(i, j) + fy * at(i, j + 1))
+        + fx * ((1.0 - fy) * at(i + 1, j) + fy * at(i + 1, j + 1));
     u.is_finite().then_some(u)
 }
 
