@@ -108,10 +108,7 @@ fn small_switch_scene(tag: &str) -> std::path::PathBuf {
         .replace("points = 200", "points = 16")
         .replace("accuracy = \"accurate\"", "accuracy = \"fast\"")
         .replace("cycles = 10", "cycles = 3");
-    temp_file(
-        &format!("switch-small{}", extra.len()),
-        format!("{text}\n{extra}").as_bytes(),
-    )
+    temp_file(&format!("switch-small-{tag}"), text.as_bytes())
 }
 
 #[test]
