@@ -160,6 +160,14 @@ pub fn quadrature(a: Accuracy) -> Quadrature {
     }
 }
 
+/// The rule of the eq-17 d-integral of an accuracy mode.
+pub fn energy_rule(a: Accuracy) -> switch_1d::EnergyRule {
+    match a {
+        Accuracy::Accurate | Accuracy::Balanced => switch_1d::EnergyRule::DEFAULT,
+        Accuracy::Fast => switch_1d::EnergyRule::COARSE,
+    }
+}
+
 /// The rough surface of a scene.
 pub fn surface(
     c: &Contact,

@@ -387,6 +387,7 @@ pub fn switch(scene: &SwitchScene) -> Result<SwitchReport, RunError> {
         accommodation_tolerance: scene.accommodation_tolerance,
         unloading_points: scene.points,
         loading_points: scene.points,
+        energy_rule: model::energy_rule(scene.accuracy),
     };
     let run = switch_1d::run_cycles(&gw, gw.virgin(), e_i, film, options).map_err(numeric)?;
     let extrapolated_fraction = run.cycles.last().map_or(0.0, |c| {
@@ -395,7 +396,14 @@ pub fn switch(scene: &SwitchScene) -> Result<SwitchReport, RunError> {
     let elastic = if scene.elastic_comparison {
         let el = model::surface(&scene.contact, &scene.surface, scene.accuracy, true)?;
         let hist = el.virgin();
-        let d_e = switch_1d::end_of_impact(&el, &hist, e_i, film).map_err(numeric)?;
+        let d_e = switch_1d::end_of_impact_with(
+            &el,
+            &hist,
+            e_i,
+            film,
+            model::energy_rule(scene.accuracy),
+        )
+        .map_err(numeric)?;
         let u = switch_1d::unload(&el, &el.load(&hist, d_e), d_e, scene.points).map_err(numeric)?;
         Some(ElasticReport {
             d_e,

@@ -62,7 +62,7 @@ pub enum Accuracy {
     Accurate,
     /// Fixed 12-point Gauss-Legendre panels of sigma_s/2.
     Balanced,
-    /// Fixed 6-point Gauss-Legendre panels of sigma_s, fewer curve points.
+    /// Fixed 6-point Gauss-Legendre panels of sigma_s; eq 17 on 8 nodes per sigma_s.
     Fast,
 }
 

@@ -26,12 +26,36 @@ impl ImpactFilm {
     }
 }
 
-/// Nodes per panel of the d-integral of eq 17 and panel width in units of the surface's
-/// length scale: the loading pressure is smooth in d between kinks (a Gaussian
-/// convolution), so 12-point Gauss-Legendre on half-sigma panels integrates it to about
-/// 1e-12 (the energy-balance test checks 1e-9 against adaptive quadrature).
-const NODES: usize = 12;
-const PANEL: f64 = 0.5;
+/// The rule for the d-integral of eq 17: `nodes`-point Gauss-Legendre on panels of
+/// `panel` times the surface's length scale. The loading pressure is smooth in d between
+/// kinks (a Gaussian convolution), so the default, 12 nodes on half-sigma panels,
+/// integrates it to about 1e-12 (the energy-balance test checks 1e-9 against adaptive
+/// quadrature); [`EnergyRule::COARSE`], 8 nodes per sigma, needs 3x fewer pressures for
+/// an error measured in `docs/performance.md`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnergyRule {
+    pub nodes: usize,
+    pub panel: f64,
+}
+
+impl EnergyRule {
+    /// 12 nodes on half-sigma panels.
+    pub const DEFAULT: Self = Self {
+        nodes: 12,
+        panel: 0.5,
+    };
+    /// 8 nodes on one-sigma panels.
+    pub const COARSE: Self = Self {
+        nodes: 8,
+        panel: 1.0,
+    };
+}
+
+impl Default for EnergyRule {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
 
 /// The interpolating polynomial through a panel's Gauss-Legendre nodes and its two end
 /// points (barycentric form): inside the panel where eq 17 closes, the root search reads
@@ -91,19 +115,37 @@ pub fn end_of_impact<S: SurfaceLaw>(
     impact_energy: f64,
     film: ImpactFilm,
 ) -> Result<f64, SwitchError> {
+    end_of_impact_with(surface, history, impact_energy, film, EnergyRule::DEFAULT)
+}
+
+/// [`end_of_impact`] with a chosen rule for the d-integral.
+pub fn end_of_impact_with<S: SurfaceLaw>(
+    surface: &S,
+    history: &S::History,
+    impact_energy: f64,
+    film: ImpactFilm,
+    rule: EnergyRule,
+) -> Result<f64, SwitchError> {
+    if !(2..=64).contains(&rule.nodes) || !(rule.panel.is_finite() && rule.panel > 0.0) {
+        return Err(SwitchError::Invalid {
+            field: "energy_rule",
+            value: rule.panel,
+            allowed: format!("2..=64 nodes ({} given) on panels > 0", rule.nodes),
+        });
+    }
     positive("impact_energy", impact_energy)?;
     positive("film_thickness", film.thickness)?;
     positive("film_youngs_modulus", film.youngs_modulus)?;
     let top = surface.reach(history)?;
     let scale = surface.length_scale();
-    let step = PANEL * scale;
+    let step = rule.panel * scale;
     let mut kinks: Vec<f64> = surface
         .kinks(history)
         .into_iter()
         .filter(|&k| k < top)
         .collect();
     kinks.sort_by(|a, b| b.total_cmp(a));
-    let gl = GaussLegendre::new(NODES);
+    let gl = GaussLegendre::new(rule.nodes);
     let err = RefCell::new(None);
     let p = |x: f64| law_call(&err, surface.pressure(x, history, Path::Approach), f64::NAN);
     let check = || match err.borrow_mut().take() {
@@ -129,7 +171,7 @@ pub fn end_of_impact<S: SurfaceLaw>(
             xs.extend([lo, hi]);
             ys.extend([p_lo, p_hi]);
             let poly = PanelPolynomial::new(xs, ys);
-            // degree NODES + 1 <= 2 NODES - 1: the same rule integrates it exactly
+            // degree nodes + 1 <= 2 nodes - 1: the same rule integrates it exactly
             let g = |x: f64| {
                 work + gl.integrate(|t| poly.eval(t), x, hi) + film.energy(poly.eval(x))
                     - impact_energy
@@ -173,7 +215,7 @@ pub struct Unloading {
 /// Unloading from `d_e` for a surface whose `history` already includes the loading to
 /// `d_e`: the curve at `points` separations (uniform from d_e to the reach; none if 0)
 /// and the pull-out pressure, located on a scan and refined by golden section to
-/// 1e-9 of the length scale.
+/// 1e-6 of the length scale (the pressure there to about 1e-12).
 pub fn unload<S: SurfaceLaw>(
     surface: &S,
     history: &S::History,
@@ -182,7 +224,9 @@ pub fn unload<S: SurfaceLaw>(
 ) -> Result<Unloading, SwitchError> {
     let top = surface.reach(history)?;
     let path = Path::Retract { from: d_e };
-    let n = if points == 0 { 64 } else { points.max(2) };
+    // without a curve to draw, 32 samples (spacing about a quarter sigma) find the
+    // adhesive well, which is about a sigma wide
+    let n = if points == 0 { 32 } else { points.max(2) };
     let mut curve = Vec::with_capacity(n);
     for i in 0..n {
         let d = d_e + (top - d_e) * i as f64 / (n - 1) as f64;
@@ -195,7 +239,8 @@ pub fn unload<S: SurfaceLaw>(
     let (d_min, p_best) = refine_sampled_min(
         &samples,
         |x| surface.pressure(x, history, path),
-        1e-9 * surface.length_scale(),
+        // the minimum's value is quadratic in the location error: 1e-6 sigma -> ~1e-12
+        1e-6 * surface.length_scale(),
     )?;
     if points == 0 {
         curve.clear();
@@ -221,6 +266,8 @@ pub struct CycleOptions {
     pub unloading_points: usize,
     /// Points on the first loading curve (0: none).
     pub loading_points: usize,
+    /// Rule of the d-integral of eq 17.
+    pub energy_rule: EnergyRule,
 }
 
 impl Default for CycleOptions {
@@ -231,6 +278,7 @@ impl Default for CycleOptions {
             accommodation_tolerance: 1e-3,
             unloading_points: 200,
             loading_points: 200,
+            energy_rule: EnergyRule::DEFAULT,
         }
     }
 }
@@ -288,7 +336,7 @@ pub fn run_cycles<S: SurfaceLaw>(
     let mut accommodated_after = None;
     let mut loading = Vec::new();
     for k in 1..=options.cycles {
-        let d_e = end_of_impact(surface, &hist, impact_energy, film)?;
+        let d_e = end_of_impact_with(surface, &hist, impact_energy, film, options.energy_rule)?;
         let first_history = hist.clone();
         let new_hist = surface.load(&hist, d_e);
         let unloading = unload(surface, &new_hist, d_e, options.unloading_points)?;

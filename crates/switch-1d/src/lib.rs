@@ -15,8 +15,8 @@ mod error;
 mod switch;
 
 pub use cycles::{
-    end_of_impact, run_cycles, unload, Cycle, CycleOptions, CycleRun, ImpactFilm, PressurePoint,
-    Unloading,
+    end_of_impact, end_of_impact_with, run_cycles, unload, Cycle, CycleOptions, CycleRun,
+    EnergyRule, ImpactFilm, PressurePoint, Unloading,
 };
 pub use error::SwitchError;
 pub use switch::{Switch, EPSILON_0};
