@@ -282,14 +282,20 @@ pub fn execute(command: Option<Command>) -> Result<String, RunError> {
                 write_file(&dir.join("cycles.csv"), &output::switch_cycles_csv(&r))?;
                 write_file(&dir.join("curves.csv"), &output::switch_curves_csv(&r))?;
                 let svg = dir.join("switch.svg");
+                let mut written = vec!["switch.json", "cycles.csv", "curves.csv"];
                 if !r.loading.is_empty() {
                     output::switch_plot(&r, &svg).map_err(|e| plot_err(&svg, e))?;
+                    written.push("switch.svg");
                 }
                 if format == Format::Table {
-                    text.push_str(&format!(
-                        "\nwrote {0}/switch.json, {0}/cycles.csv, {0}/curves.csv, {0}/switch.svg\n",
-                        dir.display()
-                    ));
+                    let list: Vec<String> = written
+                        .iter()
+                        .map(|f| dir.join(f).display().to_string())
+                        .collect();
+                    text.push_str(&format!("\nwrote {}\n", list.join(", ")));
+                    if r.loading.is_empty() {
+                        text.push_str("(no plot: the scene asks for no curves, points = 0)\n");
+                    }
                 }
             }
             Ok(text)

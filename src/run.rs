@@ -188,7 +188,18 @@ fn pull_off<M: AsperityModel>(
             force: m.force(delta, hist, path).map_err(numeric)?,
         });
     }
-    let samples: Vec<(f64, f64)> = curve.iter().map(|p| (p.delta, p.force)).collect();
+    // the search never scans coarser than 64 samples, whatever curve was asked for
+    let samples: Vec<(f64, f64)> = if n >= 64 {
+        curve.iter().map(|p| (p.delta, p.force)).collect()
+    } else {
+        (0..64)
+            .map(|i| {
+                let delta = delta_max - (delta_max - lo) * i as f64 / 63.0;
+                m.force(delta, hist, path).map(|f| (delta, f))
+            })
+            .collect::<Result<_, _>>()
+            .map_err(numeric)?
+    };
     let (_, best) = contact_core::numeric::refine_sampled_min(
         &samples,
         |x| m.force(x, hist, path),

@@ -70,17 +70,17 @@ pub enum Accuracy {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Contact {
-    /// Young's modulus of the asperity material E (Pa), > 0.
+    /// Young's modulus of the asperity material E (Pa), in [1e6, 1e13].
     pub youngs_modulus: f64,
     /// Poisson ratio nu, in [0, 0.5).
     pub poisson_ratio: f64,
-    /// Yield stress S_Y (Pa), > 0.
+    /// Yield stress S_Y (Pa), >= 1e3 (inf: never yields, with `plasticity_law = "elastic"`).
     pub yield_stress: f64,
-    /// Asperity tip radius R (m), > 0 (the equivalent radius for two rough surfaces).
+    /// Asperity tip radius R (m), in [1e-9, 1e-2] (the equivalent radius for two rough surfaces).
     pub radius: f64,
-    /// Work of adhesion w (J/m^2), > 0.
+    /// Work of adhesion w (J/m^2), in [1e-6, 100].
     pub work_of_adhesion: f64,
-    /// Dugdale range z0 (m), > 0; sigma0 = w/z0.
+    /// Dugdale range z0 (m), in [1e-12, 1e-6]; sigma0 = w/z0.
     pub z0: f64,
     /// `rigid`, `same` or `material`.
     pub counter: CounterKind,
@@ -179,16 +179,16 @@ pub struct SwitchScene {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SwitchGeometry {
-    /// Initial air gap d0 (m), in (0, 1e-3].
+    /// Initial air gap d0 (m), in [1e-9, 1e-3].
     pub d0: f64,
-    /// Dielectric thickness t_d (m), in (0, 1e-3].
+    /// Dielectric thickness t_d (m), in [1e-10, 1e-3].
     pub t_d: f64,
     /// Relative permittivity of the dielectric eps_d/eps_0, in [1, 1e4].
     pub epsilon_r: f64,
     /// Vacuum permittivity (F/m), 8.854e-12 in Table 2.
     #[serde(default = "default_eps0")]
     pub epsilon_0: f64,
-    /// Ru film thickness t_s (m), in (0, 1e-3]; stores elastic energy in eq 17.
+    /// Ru film thickness t_s (m), in [1e-10, 1e-3]; stores elastic energy in eq 17.
     pub film_thickness: f64,
     /// Impact energy per unit area E_I (J/m^2), in [1e-9, 100]. Give this, or `k_s`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -345,11 +345,11 @@ impl Checker<'_> {
     }
 
     pub fn switch(&self, s: &SwitchGeometry) -> Result<(), SceneError> {
-        self.range("switch.d0", s.d0, 0.0, 1e-3, false)?;
-        self.range("switch.t_d", s.t_d, 0.0, 1e-3, false)?;
+        self.range("switch.d0", s.d0, 1e-9, 1e-3, true)?;
+        self.range("switch.t_d", s.t_d, 1e-10, 1e-3, true)?;
         self.range("switch.epsilon_r", s.epsilon_r, 1.0, 1e4, true)?;
         self.range("switch.epsilon_0", s.epsilon_0, 1e-12, 1e-10, true)?;
-        self.range("switch.film_thickness", s.film_thickness, 0.0, 1e-3, false)?;
+        self.range("switch.film_thickness", s.film_thickness, 1e-10, 1e-3, true)?;
         match (s.impact_energy, s.k_s) {
             (Some(e), None) => {
                 self.range("switch.impact_energy", e, 1e-9, 100.0, true)?;

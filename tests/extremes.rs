@@ -154,3 +154,37 @@ fn single_asperity_up_to_a_thousand_times_yield_is_finite_and_flagged() {
         }
     }
 }
+
+#[test]
+fn pull_out_and_pull_off_do_not_depend_on_how_many_curve_points_are_asked_for() {
+    let mut few = switch_scene();
+    few.cycles = 2;
+    few.accuracy = Accuracy::Fast;
+    let mut many = few.clone();
+    few.points = 2;
+    many.points = 120;
+    let (a, b) = (run::switch(&few).unwrap(), run::switch(&many).unwrap());
+    for (x, y) in a.cycles.iter().zip(&b.cycles) {
+        let rel = (x.pull_out_pressure - y.pull_out_pressure).abs() / y.pull_out_pressure;
+        assert!(
+            rel < 1e-9,
+            "cycle {}: {} with 2 points, {} with 120",
+            x.cycle,
+            x.pull_out_pressure,
+            y.pull_out_pressure
+        );
+    }
+    let mut asp: AsperityScene = scene::parse("test", scene::DEFAULT_ASPERITY).unwrap();
+    asp.points = 2;
+    let coarse = run::asperity(&asp).unwrap();
+    asp.points = 300;
+    let fine = run::asperity(&asp).unwrap();
+    for (x, y) in coarse.cases.iter().zip(&fine.cases) {
+        assert!(
+            (x.pull_off_force / y.pull_off_force - 1.0).abs() < 1e-9,
+            "{} vs {}",
+            x.pull_off_force,
+            y.pull_off_force
+        );
+    }
+}

@@ -73,20 +73,25 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         Ok(self.adhesion.jump_in(st.r_res)? + st.delta_res)
     }
 
-    /// delta_res where R_eff switches from R_res to eq 12 (once yielded, listed last), and the
-    /// adhesion law's kinks, shifted by delta_res.
+    /// delta_res where R_eff switches from R_res to eq 12, then the adhesion law's kinks
+    /// shifted by delta_res. Each kind keeps its position at every height: a law that can
+    /// yield lists delta_res first, NaN before yield (nothing bends there then).
     fn kinks(&self, history: AsperityHistory) -> Result<Vec<f64>, LawError> {
         let st = self.plasticity.state(history.delta_max);
-        let mut k: Vec<f64> = self
-            .adhesion
-            .kinks(st.r_res)?
-            .into_iter()
-            .map(|x| x + st.delta_res)
-            .collect();
-        // only once yielded: before, R_eff = R and nothing bends at delta = 0
-        if st.delta_res > 0.0 {
-            k.push(st.delta_res);
+        let mut k = Vec::new();
+        if self.plasticity.critical_interference().is_finite() {
+            k.push(if st.delta_res > 0.0 {
+                st.delta_res
+            } else {
+                f64::NAN
+            });
         }
+        k.extend(
+            self.adhesion
+                .kinks(st.r_res)?
+                .into_iter()
+                .map(|x| x + st.delta_res),
+        );
         Ok(k)
     }
 }

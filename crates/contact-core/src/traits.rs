@@ -44,7 +44,8 @@ pub trait AdhesionLaw {
     }
 
     /// Interferences (m) where the force is continuous but not smooth, for a sphere of
-    /// `radius` (m). Quadrature over asperity heights splits there.
+    /// `radius` (m). Quadrature over asperity heights splits there. Keep each kind of kink
+    /// at the same position for every radius; NaN marks one that is absent.
     fn kinks(&self, radius: f64) -> Result<Vec<f64>, LawError> {
         let _ = radius;
         Ok(Vec::new())

@@ -288,9 +288,12 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         for i in 0..n_kinks {
             let g = |h: f64| -> Result<f64, GwError> {
                 let k = self.law(h, d, a.kinks(hist_eff(h)))?;
-                // an asperity without this kink (delta_res before yield) counts as below it;
+                // an asperity without this kink (NaN or absent: delta_res before yield, the
+                // junction above lambda_c) counts as below it;
                 // above the yield height h - d - delta_res increases with h
-                Ok(k.get(i).map_or(-self.sigma_s, |&x| h - d - x))
+                Ok(k.get(i)
+                    .filter(|x| !x.is_nan())
+                    .map_or(-self.sigma_s, |&x| h - d - x))
             };
             if let Some(h_k) = self.edge("kink height", &g, edge, top)? {
                 points.push(h_k);

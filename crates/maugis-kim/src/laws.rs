@@ -148,6 +148,13 @@ impl Jkr {
 
     /// Nondimensional force on a path (see [`MdCurve::force`] for the path rule).
     pub fn force_nd(delta: f64, path: Path) -> Result<f64, MkError> {
+        if delta.is_nan() {
+            return Err(MkError::Invalid {
+                field: "delta",
+                value: delta,
+                allowed: "a number",
+            });
+        }
         if delta >= 0.0 {
             return Self::stable_force(delta);
         }
@@ -240,14 +247,15 @@ impl AdhesionLaw for MaugisKim {
         Ok(-self.z0)
     }
     /// For lambda <= lambda_c the stable branch passes the junction of the non-contact
-    /// and contact branches, where the curvature of F(delta) changes.
+    /// and contact branches, where the curvature of F(delta) changes; NaN above lambda_c
+    /// (the stable branch ends at the turning point first), so the list keeps its length.
     fn kinks(&self, radius: f64) -> Result<Vec<f64>, LawError> {
         let sc = self.scales(radius)?;
         let curve = MdCurve::new(self.lambda(radius))?;
-        Ok(if curve.lambda() <= crate::LAMBDA_CRITICAL {
-            vec![curve.junction().delta * sc.interference]
+        Ok(vec![if curve.lambda() <= crate::LAMBDA_CRITICAL {
+            curve.junction().delta * sc.interference
         } else {
-            Vec::new()
-        })
+            f64::NAN
+        }])
     }
 }

@@ -480,6 +480,19 @@ impl MdCurve {
     /// Approach: zero while Delta < Delta_in, then the stable branch (jump-in). Retract
     /// (after having reached Delta_in): the stable branch down to Delta_t, then zero.
     pub fn force(&self, delta: f64, path: Path) -> Result<f64, MkError> {
+        let from = match path {
+            Path::Retract { from } => from,
+            Path::Approach => 0.0,
+        };
+        for (field, v) in [("delta", delta), ("from", from)] {
+            if v.is_nan() {
+                return Err(MkError::Invalid {
+                    field,
+                    value: v,
+                    allowed: "a number",
+                });
+            }
+        }
         let d_in = self.jump_in_delta();
         if delta >= d_in {
             return Ok(self.stable_point(delta)?.force);
@@ -502,6 +515,13 @@ impl MdCurve {
     /// interference `delta_end`, `n` points (at least 4): a quarter on the non-contact
     /// branch, the rest log-spaced in s on the contact branch.
     pub fn curve(&self, n: usize, delta_end: f64) -> Result<Vec<MdPoint>, MkError> {
+        if !delta_end.is_finite() {
+            return Err(MkError::Invalid {
+                field: "delta_end",
+                value: delta_end,
+                allowed: "finite",
+            });
+        }
         let n = n.max(4);
         let n_nc = n / 4;
         let mut out = Vec::with_capacity(n);

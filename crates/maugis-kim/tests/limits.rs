@@ -226,3 +226,17 @@ fn si_law_matches_nondimensional_curve() {
     let fnd = c.stable_point(delta / sc.interference).unwrap().force;
     assert!((f - fnd * PI * r).abs() < 1e-15);
 }
+
+#[test]
+fn nan_inputs_are_errors_not_zero_forces() {
+    let c = MdCurve::new(1.0).unwrap();
+    assert!(c.force(f64::NAN, Path::Approach).is_err());
+    assert!(c.force(0.0, Path::Retract { from: f64::NAN }).is_err());
+    assert!(c.stable_point(f64::NAN).is_err());
+    assert!(c.curve(10, f64::NAN).is_err());
+    assert!(Jkr::force_nd(f64::NAN, Path::Approach).is_err());
+    assert!(MdCurve::new(f64::NAN).is_err() && MdCurve::new(-1.0).is_err());
+    let mk = MaugisKim::new(3e11, 1.0, 1e-10).unwrap();
+    assert!(mk.force(4e-6, f64::NAN, Path::Approach).is_err());
+    assert!(mk.force(f64::NAN, 1e-9, Path::Approach).is_err());
+}

@@ -224,27 +224,38 @@ pub fn unload<S: SurfaceLaw>(
 ) -> Result<Unloading, SwitchError> {
     let top = surface.reach(history)?;
     let path = Path::Retract { from: d_e };
-    // without a curve to draw, 32 samples (spacing about a quarter sigma) find the
-    // adhesive well, which is about a sigma wide
-    let n = if points == 0 { 32 } else { points.max(2) };
-    let mut curve = Vec::with_capacity(n);
-    for i in 0..n {
-        let d = d_e + (top - d_e) * i as f64 / (n - 1) as f64;
-        curve.push(PressurePoint {
-            d,
-            pressure: surface.pressure(d, history, path)?,
-        });
-    }
-    let samples: Vec<(f64, f64)> = curve.iter().map(|q| (q.d, q.pressure)).collect();
+    let sample = |n: usize| -> Result<Vec<PressurePoint>, SwitchError> {
+        (0..n)
+            .map(|i| {
+                let d = d_e + (top - d_e) * i as f64 / (n - 1) as f64;
+                Ok(PressurePoint {
+                    d,
+                    pressure: surface.pressure(d, history, path)?,
+                })
+            })
+            .collect()
+    };
+    // The search for the minimum never scans coarser than SCAN samples (spacing about a
+    // quarter sigma across an adhesive well about a sigma wide), whatever curve was asked
+    // for; a curve of at least SCAN points serves as the scan itself.
+    const SCAN: usize = 32;
+    let curve = if points == 0 {
+        Vec::new()
+    } else {
+        sample(points.max(2))?
+    };
+    let scan = if curve.len() >= SCAN {
+        curve.clone()
+    } else {
+        sample(SCAN)?
+    };
+    let samples: Vec<(f64, f64)> = scan.iter().map(|q| (q.d, q.pressure)).collect();
     let (d_min, p_best) = refine_sampled_min(
         &samples,
         |x| surface.pressure(x, history, path),
         // the minimum's value is quadratic in the location error: 1e-6 sigma -> ~1e-12
         1e-6 * surface.length_scale(),
     )?;
-    if points == 0 {
-        curve.clear();
-    }
     Ok(Unloading {
         pull_out_pressure: (-p_best).max(0.0),
         pull_out_separation: d_min,
