@@ -8,7 +8,7 @@ use stiction::gw_surface::{GreenwoodWilliamson, Quadrature};
 use stiction::model;
 use stiction::output::{plot, Series};
 use stiction::scene::{self, SwitchScene};
-use stiction::switch_1d::{end_of_impact, run_cycles, unload, CycleOptions, ImpactFilm, Switch};
+use stiction::switch_1d::{end_of_impact, run_cycles, unload, CycleOptions, ImpactFilm};
 
 struct Row {
     label: String,
@@ -24,11 +24,10 @@ fn solve(s: &SwitchScene, q: Quadrature) -> Result<(Vec<f64>, f64), String> {
     let gwe = GreenwoodWilliamson::new(el, s.surface.sigma_s, s.surface.asperity_density, q)
         .map_err(|e| e.to_string())?;
     let g = &s.switch;
-    let sw = Switch::new(g.d0, g.t_d, g.epsilon_r, g.epsilon_0).map_err(|e| e.to_string())?;
-    let e_i = g.impact_energy.unwrap_or(0.5);
-    let _ = sw
-        .stiffness_for_impact_energy(e_i)
-        .map_err(|e| e.to_string())?;
+    // the embedded switch scene gives E_I directly (K_s only sets the verdict, not timed here)
+    let e_i = g
+        .impact_energy
+        .ok_or("tradeoff needs a scene with impact_energy")?;
     let film = ImpactFilm {
         thickness: g.film_thickness,
         youngs_modulus: s.contact.youngs_modulus,

@@ -148,12 +148,18 @@ impl Contact {
         }
     }
 
+    /// dP/ds = lambda s (t + s/m^2) and dQ/ds = (4 lambda^2/3)(t + s/m^2 - s/m).
+    fn d_pq(&self, lambda: f64) -> (f64, f64) {
+        let (s, m, t) = (self.s, self.m, self.t);
+        let u = t + s / (m * m);
+        (lambda * s * u, 4.0 / 3.0 * lambda * lambda * (u - s / m))
+    }
+
     /// A quantity with the sign of dDelta/ds (Delta'(s) D / A, D = 2PA + Q > 0).
     fn d_delta_sign(&self, lambda: f64) -> f64 {
-        let (s, m, t, a) = (self.s, self.m, self.t, self.a);
+        let (s, m, a) = (self.s, self.m, self.a);
         let l2 = lambda * lambda;
-        let dp = lambda * s * (t + s / (m * m));
-        let dq = 4.0 / 3.0 * l2 * (t + s / (m * m) - s / m);
+        let (dp, dq) = self.d_pq(lambda);
         let m_minus_1 = s * (s / (1.0 + m));
         let phi = -2.0 * a * (dp * a + dq) - 4.0 / 3.0 * l2 * s_over_m2_minus_atan(s) * a
             + 16.0 / 9.0 * l2 * lambda * m_minus_1 / (m * m);
@@ -170,8 +176,7 @@ impl Contact {
     /// A quantity with the sign of dFbar/ds.
     fn d_force_sign(&self, lambda: f64) -> f64 {
         let (s, m, t, a, p, q) = (self.s, self.m, self.t, self.a, self.p, self.q);
-        let dp = lambda * s * (t + s / (m * m));
-        let dq = 4.0 / 3.0 * lambda * lambda * (t + s / (m * m) - s / m);
+        let (dp, dq) = self.d_pq(lambda);
         let g3 = s + m * m * t;
         let dg3 = 2.0 + 2.0 * s * t;
         let d = 2.0 * p * a + q;
