@@ -1,6 +1,9 @@
+use contact_core::numeric::{geomspace, grid_min, linspace, Tolerance};
 use contact_core::{
-    AdhesionLaw, AsperityHistory, AsperityModel, Jumps, LawError, Path, PlasticState, PlasticityLaw,
+    AdhesionLaw, AsperityHistory, AsperityModel, Jumps, LawError, Path, PlasticState,
+    PlasticityLaw,
 };
+use serde::Serialize;
 
 /// One asperity: a plasticity law `P` and an adhesion law `A` composed as in the paper's
 /// section 2.2. The adhesion law sees the deformed asperity as an elastic sphere of radius
@@ -8,11 +11,52 @@ use contact_core::{
 /// from R_eff inside the adhesion law. Plastic deformation is uncoupled from adhesion.
 ///
 /// The elastic comparison is the same type with [`crate::Elastic`].
+///
+/// ```
+/// use asperity_plastic::{ElastoPlasticAsperity, EtsionKadin, YieldModulus};
+/// use contact_core::{paper, AsperityModel, AsperityHistory, Material, Pair, Path};
+/// use maugis_kim::{DugdaleParams, MaugisKim};
+/// let pair = Pair::new(Material::new(paper::RU)?, None, paper::RADIUS)?;
+/// let asperity = ElastoPlasticAsperity::new(
+///     EtsionKadin::new(&pair, YieldModulus::AsPrinted)?,
+///     MaugisKim::new(DugdaleParams::for_pair(&pair, paper::WORK_OF_ADHESION, paper::Z0))?,
+/// );
+/// // loaded to 17 nm (paper Fig 2) and retracted: the flattened tip pulls harder
+/// let pull = asperity.pull_off(17e-9)?;
+/// assert!(pull.force < -50e-6 && pull.delta < 17e-9);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ElastoPlasticAsperity<P, A> {
+    /// The plasticity law.
     pub plasticity: P,
+    /// The adhesion law.
     pub adhesion: A,
 }
+
+/// The elastic sphere the adhesion law sees at one interference.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EffectiveSphere {
+    /// R_eff (m), eq 12.
+    pub radius: f64,
+    /// delta - delta_res (m).
+    pub interference: f64,
+    /// The plastic state behind it.
+    pub state: PlasticState,
+}
+
+/// The most tensile force on a retraction, and where it occurs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PullOff {
+    /// Interference (m).
+    pub delta: f64,
+    /// Force (N, negative when adhesive).
+    pub force: f64,
+}
+
+/// Relative bracket tolerance of the pull-off refinement: the force at a smooth minimum
+/// is then exact to rounding (quadratic in the location error).
+pub const PULL_OFF_TOLERANCE: Tolerance = Tolerance::relative(1e-10);
 
 impl<P: PlasticityLaw, A: AdhesionLaw> ElastoPlasticAsperity<P, A> {
     /// Compose a plasticity law and an adhesion law.
@@ -23,12 +67,51 @@ impl<P: PlasticityLaw, A: AdhesionLaw> ElastoPlasticAsperity<P, A> {
         }
     }
 
-    /// Radius R_eff (m) and effective interference (m) the adhesion law sees at `delta`
-    /// after the history `delta_max`.
-    pub fn effective(&self, delta: f64, delta_max: f64) -> (f64, f64, PlasticState) {
-        let st = self.plasticity.state(delta_max);
-        let r = self.plasticity.effective_radius(&st, delta);
-        (r, delta - st.delta_res, st)
+    /// The sphere the adhesion law sees at `delta` after the history `delta_max`.
+    pub fn effective(&self, delta: f64, delta_max: f64) -> EffectiveSphere {
+        let state = self.plasticity.state(delta_max);
+        EffectiveSphere {
+            radius: self.plasticity.effective_radius(&state, delta),
+            interference: delta - state.delta_res,
+            state,
+        }
+    }
+
+    /// Pull-off after loading to `delta_max` (m): the most tensile force on the retraction
+    /// from `delta_max` down to the jump-out. The search samples the retraction on a grid
+    /// that follows the asperity's own length scales (geometric from both ends, from a
+    /// millionth of the range, so a well near the jump-out or just below `delta_max`
+    /// cannot fall between samples, plus 64 even steps), then refines the best local
+    /// minima ([`contact_core::numeric::grid_min`]).
+    pub fn pull_off(&self, delta_max: f64) -> Result<PullOff, LawError> {
+        let hist = AsperityHistory { delta_max };
+        let j = self.jumps(hist)?;
+        let path = Path::Retract { from: delta_max };
+        let (lo, hi) = (j.jump_out, delta_max);
+        if !(hi > lo) {
+            return Ok(PullOff {
+                delta: hi,
+                force: self.force(hi, hist, path)?,
+            });
+        }
+        let range = hi - lo;
+        // never exactly at the jump-out, where the force is zero just below
+        let lo_in = lo + 1e-12 * range;
+        let mut grid: Vec<f64> = linspace(lo_in, hi, 65).collect();
+        grid.extend(geomspace(1e-6 * range, 0.5 * range, 40).map(|x| lo_in + x));
+        grid.extend(geomspace(1e-6 * range, 0.5 * range, 40).map(|x| hi - x));
+        grid.sort_by(f64::total_cmp);
+        grid.dedup();
+        let m = grid_min(
+            "asperity pull-off",
+            |x| self.force(x, hist, path),
+            &grid,
+            PULL_OFF_TOLERANCE,
+        )?;
+        Ok(PullOff {
+            delta: m.x,
+            force: m.value,
+        })
     }
 }
 
@@ -40,18 +123,18 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
             Path::Approach => history.delta_max.max(delta),
             Path::Retract { from } => history.delta_max.max(from),
         };
-        let (r, delta_eff, st) = self.effective(delta, delta_max);
+        let e = self.effective(delta, delta_max);
         let path = match path {
             Path::Approach => Path::Approach,
             Path::Retract { from } => Path::Retract {
-                from: from - st.delta_res,
+                from: from - e.state.delta_res,
             },
         };
-        self.adhesion.force(r, delta_eff, path)
+        self.adhesion.force(e.radius, e.interference, path)
     }
 
-    fn yield_interference(&self) -> f64 {
-        self.plasticity.critical_interference()
+    fn delta_cp(&self) -> f64 {
+        self.plasticity.delta_cp()
     }
 
     fn plastic_state(&self, history: AsperityHistory) -> PlasticState {
@@ -75,22 +158,18 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
 
     /// delta_res where R_eff switches from R_res to eq 12, then the adhesion law's kinks
     /// shifted by delta_res. Each kind keeps its position at every height: a law that can
-    /// yield lists delta_res first, NaN before yield (nothing bends there then).
-    fn kinks(&self, history: AsperityHistory) -> Result<Vec<f64>, LawError> {
+    /// yield lists delta_res first, `None` before yield (nothing bends there then).
+    fn kinks(&self, history: AsperityHistory) -> Result<Vec<Option<f64>>, LawError> {
         let st = self.plasticity.state(history.delta_max);
         let mut k = Vec::new();
-        if self.plasticity.critical_interference().is_finite() {
-            k.push(if st.delta_res > 0.0 {
-                st.delta_res
-            } else {
-                f64::NAN
-            });
+        if self.plasticity.delta_cp().is_finite() {
+            k.push((st.delta_res > 0.0).then_some(st.delta_res));
         }
         k.extend(
             self.adhesion
                 .kinks(st.r_res)?
                 .into_iter()
-                .map(|x| x + st.delta_res),
+                .map(|x| x.map(|x| x + st.delta_res)),
         );
         Ok(k)
     }

@@ -1,19 +1,33 @@
 //! Plasticity of one asperity and the elasto-plastic adhesive asperity of the paper's
 //! section 2.2.
 //!
-//! * [`EtsionKadin`]: yield onset (eq 1, Kogut-Etsion/Brizmer), residual height and radius
-//!   after unloading (eqs 4-5, Etsion, Kligerman & Kadin 2005) and the effective radius at
-//!   the current interference (eqs 12-13).
+//! * [`EtsionKadin`]: yield onset (eq 1, Kogut-Etsion/Brizmer, with the reading of its
+//!   modulus stated: [`YieldModulus`]), residual height and radius after unloading (eqs 4-5,
+//!   Etsion, Kligerman & Kadin 2005) and the effective radius at the current interference
+//!   (eqs 12-13, constants [`EffectiveRadiusFit`]).
 //! * [`Elastic`]: never yields.
 //! * [`ElastoPlasticAsperity`]: any [`PlasticityLaw`] composed with any
-//!   [`AdhesionLaw`], implementing [`AsperityModel`].
+//!   [`AdhesionLaw`], implementing [`AsperityModel`], with its pull-off.
+//!
+//! ```
+//! use asperity_plastic::{EtsionKadin, YieldModulus};
+//! use contact_core::{paper, Material, Pair, PlasticityLaw};
+//! let pair = Pair::new(Material::new(paper::RU)?, None, paper::RADIUS)?;
+//! // the two readings of eq 1 differ by (1 - nu^2)^2 on a rigid flat
+//! let printed = EtsionKadin::new(&pair, YieldModulus::AsPrinted)?;
+//! let composite = EtsionKadin::new(&pair, YieldModulus::Composite)?;
+//! assert!((composite.delta_cp() / printed.delta_cp() - 0.91 * 0.91).abs() < 1e-12);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 mod asperity;
 mod error;
 mod etsion_kadin;
 
-pub use asperity::ElastoPlasticAsperity;
+pub use asperity::{EffectiveSphere, ElastoPlasticAsperity, PullOff, PULL_OFF_TOLERANCE};
 pub use error::PlasticError;
-pub use etsion_kadin::{Elastic, EtsionKadin, YieldModulus, FIT_RANGE_MAX};
+pub use etsion_kadin::{
+    EffectiveRadiusFit, Elastic, EtsionKadin, YieldModulus, YieldingBody, FIT_RANGE_MAX,
+};
 
 pub use contact_core::{AdhesionLaw, AsperityHistory, AsperityModel, PlasticState, PlasticityLaw};

@@ -5,48 +5,68 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum CoreError {
     /// A parameter outside its physical domain.
-    #[error("invalid {field} = {value}: must be {allowed}")]
+    #[error("invalid {field} = {value:e}: must be {allowed}")]
     Invalid {
+        /// The parameter's name.
         field: &'static str,
+        /// Its value.
         value: f64,
+        /// What is allowed.
         allowed: &'static str,
     },
     /// A bracketed root search whose end points do not bracket a sign change.
-    #[error("root of {what} not bracketed on [{lo}, {hi}] (f = {f_lo}, {f_hi})")]
+    #[error("root of {what} not bracketed on [{lo:e}, {hi:e}] (f = {f_lo:e}, {f_hi:e})")]
     NotBracketed {
+        /// What was solved.
         what: &'static str,
+        /// Lower end.
         lo: f64,
+        /// Upper end.
         hi: f64,
+        /// f at the lower end.
         f_lo: f64,
+        /// f at the upper end.
         f_hi: f64,
     },
-    /// A root search that ran out of iterations.
-    #[error("root of {what} did not converge in {iterations} iterations")]
+    /// An iterative search that ran out of iterations.
+    #[error("{what} did not converge in {iterations} iterations")]
     NoConvergence {
+        /// What was solved.
         what: &'static str,
+        /// The cap reached.
         iterations: usize,
     },
     /// A quadrature that could not reach its tolerance.
     #[error("quadrature of {what} reached error {achieved:e} > tolerance {tolerance:e}")]
     Quadrature {
+        /// What was integrated.
         what: &'static str,
+        /// The error estimate reached.
         achieved: f64,
+        /// The target.
         tolerance: f64,
     },
-    /// A function evaluated inside a solver returned a non-finite value.
-    #[error("{what} is not finite at x = {x}")]
-    NotFinite { what: &'static str, x: f64 },
+    /// A function evaluated inside a solver returned a non-finite value (NaN or infinite).
+    #[error("{what} is not finite at x = {x:e}")]
+    NotFinite {
+        /// The function.
+        what: &'static str,
+        /// Where.
+        x: f64,
+    },
 }
 
 /// Error returned through the law traits. Each crate keeps its own error enum and
 /// converts it into this one at the trait boundary, so that laws from different crates
-/// (or from a user) compose without knowing each other's types.
+/// (or from a user) compose without knowing each other's types; the original error stays
+/// reachable through [`std::error::Error::source`] and [`LawError::downcast_ref`].
 #[derive(Debug, Error)]
 pub enum LawError {
+    /// An error of `contact-core` itself.
     #[error(transparent)]
     Core(#[from] CoreError),
-    /// An error of a law implemented in another crate.
-    #[error("{0}")]
+    /// An error of a law implemented in another crate (or by a user).
+    #[error(transparent)]
     Law(Box<dyn std::error::Error + Send + Sync + 'static>),
 }
 
@@ -55,10 +75,24 @@ impl LawError {
     pub fn law<E: std::error::Error + Send + Sync + 'static>(e: E) -> Self {
         LawError::Law(Box::new(e))
     }
+
+    /// The law crate's own error, if it is an `E`.
+    pub fn downcast_ref<E: std::error::Error + 'static>(&self) -> Option<&E> {
+        match self {
+            LawError::Core(c) => (c as &dyn std::error::Error).downcast_ref(),
+            LawError::Law(b) => b.downcast_ref(),
+        }
+    }
 }
 
-/// Checks that `value` is finite and strictly positive.
-pub(crate) fn positive(field: &'static str, value: f64) -> Result<f64, CoreError> {
+/// The one positive-and-finite check of the workspace: `value` if it is finite and > 0.
+///
+/// ```
+/// assert!(contact_core::positive("radius", 4e-6).is_ok());
+/// let e = contact_core::positive("radius", -1.0).unwrap_err();
+/// assert_eq!(e.to_string(), "invalid radius = -1e0: must be finite and > 0");
+/// ```
+pub fn positive(field: &'static str, value: f64) -> Result<f64, CoreError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
@@ -66,6 +100,19 @@ pub(crate) fn positive(field: &'static str, value: f64) -> Result<f64, CoreError
             field,
             value,
             allowed: "finite and > 0",
+        })
+    }
+}
+
+/// `value` if it is finite (NaN and infinities are errors naming `field`).
+pub fn finite(field: &'static str, value: f64) -> Result<f64, CoreError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(CoreError::Invalid {
+            field,
+            value,
+            allowed: "finite",
         })
     }
 }

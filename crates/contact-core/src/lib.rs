@@ -1,23 +1,33 @@
 //! Shared vocabulary of the `stiction` workspace.
 //!
-//! * validated material and pair types in SI units ([`Material`], [`Pair`]),
+//! * validated material and pair types in SI units ([`Material`], [`Pair`]) and the
+//!   paper's data ([`paper`]),
 //! * the four law traits that join the crates: [`AdhesionLaw`], [`PlasticityLaw`],
 //!   [`AsperityModel`], [`SurfaceLaw`],
-//! * the numeric adapters every crate shares: a bracketed root with a *relative*
-//!   tolerance ([`numeric::brent`]) and adaptive tanh-sinh quadrature with an error
-//!   check ([`numeric::integrate`]).
+//! * the numeric adapters every crate shares ([`numeric`]): bracketed roots and minima
+//!   with a [`numeric::Tolerance`], error-controlled adaptive quadrature, sampling.
 //!
 //! Sign convention everywhere: interference `delta > 0` means overlap of the undeformed
 //! profiles; compressive force/pressure is positive, adhesive (tensile) negative.
+//!
+//! ```
+//! use contact_core::{paper, Material, Pair};
+//! // the two Ru films of the paper's switch, as one sphere on a flat (eq 6)
+//! let ru = Material::new(paper::RU)?;
+//! let pair = Pair::new(ru, Some(ru), paper::RADIUS)?;
+//! // K = 4/3 E*, E* = E / (2 (1 - nu^2)) for two identical bodies
+//! assert!((pair.k() / (4.0 / 3.0 * 410e9 / 1.82) - 1.0).abs() < 1e-12);
+//! # Ok::<(), contact_core::CoreError>(())
+//! ```
 
 mod error;
 mod material;
 pub mod numeric;
 mod traits;
 
-pub use error::{CoreError, LawError};
-pub use material::{Material, Pair};
+pub use error::{finite, positive, CoreError, LawError};
+pub use material::{paper, Material, MaterialProps, Pair};
 pub use traits::{
-    AdhesionLaw, AsperityHistory, AsperityModel, Jumps, Path, PlasticState, PlasticityLaw,
-    SurfaceLaw,
+    AdhesionLaw, AsperityHistory, AsperityModel, Estimate, Jumps, LengthScales, Path,
+    PlasticState, PlasticityLaw, SurfaceLaw,
 };

@@ -12,7 +12,11 @@ pub enum Path {
     /// Coming from far away (or reloading).
     Approach,
     /// Retracting after reaching `from`.
-    Retract { from: f64 },
+    Retract {
+        /// The extreme of the excursion: the largest interference (sphere, asperity) or the
+        /// smallest separation (surface) reached.
+        from: f64,
+    },
 }
 
 /// Interferences (m) at which a sphere jumps into contact on approach and out of contact
@@ -44,9 +48,11 @@ pub trait AdhesionLaw {
     }
 
     /// Interferences (m) where the force is continuous but not smooth, for a sphere of
-    /// `radius` (m). Quadrature over asperity heights splits there. Keep each kind of kink
-    /// at the same position for every radius; NaN marks one that is absent.
-    fn kinks(&self, radius: f64) -> Result<Vec<f64>, LawError> {
+    /// `radius` (m). Declaring them only makes quadrature over asperity heights cheaper
+    /// (it splits there); the error control of the quadrature does not depend on them.
+    /// Keep each kind of kink at the same position for every radius, `None` where it is
+    /// absent.
+    fn kinks(&self, radius: f64) -> Result<Vec<Option<f64>>, LawError> {
         let _ = radius;
         Ok(Vec::new())
     }
@@ -71,7 +77,7 @@ pub trait PlasticityLaw {
     fn radius(&self) -> f64;
     /// Yield onset: the critical interference delta_CP (m); `f64::INFINITY` if the law
     /// never yields.
-    fn critical_interference(&self) -> f64;
+    fn delta_cp(&self) -> f64;
     /// State after loading to `delta_max` (m).
     fn state(&self, delta_max: f64) -> PlasticState;
     /// Effective radius R_eff (m) of the deformed asperity at the current interference
@@ -83,6 +89,7 @@ pub trait PlasticityLaw {
 /// at or below zero means it has never been pressed.
 #[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Default, Serialize, Deserialize)]
 pub struct AsperityHistory {
+    /// Largest interference reached (m).
     pub delta_max: f64,
 }
 
@@ -106,8 +113,8 @@ pub trait AsperityModel {
         }
     }
 
-    /// Interference (m) at which the asperity starts to yield.
-    fn yield_interference(&self) -> f64;
+    /// Interference delta_CP (m) at which the asperity starts to yield (infinite if never).
+    fn delta_cp(&self) -> f64;
 
     /// Plastic state for a history.
     fn plastic_state(&self, history: AsperityHistory) -> PlasticState;
@@ -121,11 +128,33 @@ pub trait AsperityModel {
         Ok(self.jumps(history)?.jump_in)
     }
 
-    /// Interferences (m) where the force of an asperity with this history has a kink.
-    fn kinks(&self, history: AsperityHistory) -> Result<Vec<f64>, LawError> {
+    /// Interferences (m) where the force of an asperity with this history has a kink,
+    /// position-stable as in [`AdhesionLaw::kinks`]; an optional speed-up, never needed
+    /// for correctness.
+    fn kinks(&self, history: AsperityHistory) -> Result<Vec<Option<f64>>, LawError> {
         let _ = history;
         Ok(Vec::new())
     }
+}
+
+/// A value with its error estimate (same units).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Estimate {
+    /// The value.
+    pub value: f64,
+    /// Its estimated absolute error (>= 0).
+    pub error: f64,
+}
+
+/// The length scales (m) of a surface law that searches over the separation size their
+/// samples by: nothing of interest in the law is narrower than `finest`, and `roughness`
+/// is the scale of its bulk (sigma_s for a Greenwood-Williamson surface).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LengthScales {
+    /// The narrowest feature (jump distances, interaction range, elastic recovery).
+    pub finest: f64,
+    /// The bulk scale.
+    pub roughness: f64,
 }
 
 /// The contact law of a rough surface against a flat: pressure (Pa, compressive > 0)
@@ -142,21 +171,33 @@ pub trait SurfaceLaw {
     /// Pressure (Pa) at separation `d` (m) given `history` and `path`; on
     /// `Path::Retract { from }`, `from` is the smallest separation of the current
     /// excursion.
-    fn pressure(&self, d: f64, history: &Self::History, path: Path) -> Result<f64, LawError>;
+    fn pressure(&self, d: f64, history: &Self::History, path: Path) -> Result<f64, LawError> {
+        Ok(self.pressure_estimate(d, history, path)?.value)
+    }
+
+    /// Pressure (Pa) with the estimated error of its evaluation (quadrature), so that
+    /// callers can report the error of what they derive from it.
+    fn pressure_estimate(
+        &self,
+        d: f64,
+        history: &Self::History,
+        path: Path,
+    ) -> Result<Estimate, LawError>;
 
     /// History after loading to separation `d` (m).
     fn load(&self, history: &Self::History, d: f64) -> Self::History;
 
-    /// Separation (m) above which the pressure is below the law's stated tail bound on
-    /// both paths for this history: integrals over d may start there.
-    fn reach(&self, history: &Self::History) -> Result<f64, LawError>;
+    /// Separation (m) above which the pressure on `path` is zero (below the law's stated
+    /// tail bound) for this history: on `Path::Approach`, where the first asperity
+    /// touches; on `Path::Retract`, where the last one lets go.
+    fn reach(&self, history: &Self::History, path: Path) -> Result<f64, LawError>;
 
-    /// A length (m) over which the pressure changes appreciably (the roughness, for a
-    /// Greenwood-Williamson surface); integrals over d size their panels by it.
-    fn length_scale(&self) -> f64;
+    /// The law's length scales for this history (see [`LengthScales`]).
+    fn length_scales(&self, history: &Self::History) -> Result<LengthScales, LawError>;
 
-    /// Separations (m) where the pressure has a kink for this history (for instance the
-    /// deepest separation reached, where reloading turns into virgin loading).
+    /// Separations (m) where the approach pressure has a kink for this history (for
+    /// instance the deepest separation reached, where reloading turns into virgin
+    /// loading); an optional speed-up of integrals over d.
     fn kinks(&self, history: &Self::History) -> Vec<f64> {
         let _ = history;
         Vec::new()

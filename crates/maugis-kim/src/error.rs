@@ -4,37 +4,31 @@ use thiserror::Error;
 /// Errors of the `maugis-kim` crate.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum MkError {
-    /// A parameter outside its domain.
-    #[error("invalid {field} = {value}: must be {allowed}")]
-    Invalid {
-        field: &'static str,
-        value: f64,
-        allowed: &'static str,
-    },
+    /// A parameter outside its domain, or a solver failure (bracket, convergence,
+    /// non-finite value).
+    #[error(transparent)]
+    Core(#[from] CoreError),
     /// A point asked on the stable branch below its turning point.
     #[error(
-        "Delta = {delta} lies below the turning point Delta_t = {turning}: no stable equilibrium"
+        "Delta = {delta:e} lies below the turning point Delta_t = {turning:e}: no stable equilibrium"
     )]
-    BelowTurningPoint { delta: f64, turning: f64 },
-    /// A solver failure (bracket, convergence, non-finite value).
-    #[error("Maugis-Kim solver: {0}")]
-    Numeric(#[from] CoreError),
+    BelowTurningPoint {
+        /// The interference asked (nondimensional).
+        delta: f64,
+        /// The turning point's interference (nondimensional).
+        turning: f64,
+    },
+    /// An interference so far beyond the junction that a double cannot resolve the
+    /// contact branch there.
+    #[error("Delta = {delta:e} lies beyond the range a double can resolve on the contact branch")]
+    Unresolvable {
+        /// The interference asked (nondimensional).
+        delta: f64,
+    },
 }
 
 impl From<MkError> for LawError {
     fn from(e: MkError) -> Self {
         LawError::law(e)
-    }
-}
-
-pub(crate) fn check_positive(field: &'static str, value: f64) -> Result<f64, MkError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(MkError::Invalid {
-            field,
-            value,
-            allowed: "finite and > 0",
-        })
     }
 }

@@ -1,26 +1,62 @@
 //! The SI adhesion laws. Each holds the material constants and takes the radius per
 //! call, because the elasto-plastic asperity changes its radius with interference.
 
-use crate::error::{check_positive, MkError};
+use crate::error::MkError;
 use crate::md::MdCurve;
 use crate::scales::Scales;
-use contact_core::numeric::brent;
-use contact_core::{AdhesionLaw, Jumps, LawError, Path};
+use contact_core::numeric::{brent, Tolerance};
+use contact_core::{finite, positive, AdhesionLaw, CoreError, Jumps, LawError, Pair, Path};
 use std::f64::consts::PI;
 
-fn finite(field: &'static str, v: f64) -> Result<f64, MkError> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(MkError::Invalid {
-            field,
-            value: v,
-            allowed: "finite",
-        })
+/// The constants of a Dugdale adhesive interface between two elastic bodies, SI units:
+/// the argument of [`MaugisKim::new`] and [`Dmt::new`] (named fields, so that w and z0
+/// cannot be swapped silently).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DugdaleParams {
+    /// Maugis' K = 4/3 E* (Pa, eq 6).
+    pub k: f64,
+    /// Work of adhesion w (J/m^2).
+    pub work_of_adhesion: f64,
+    /// Range of the Dugdale interaction z0 (m); sigma0 = w/z0.
+    pub z0: f64,
+}
+
+impl DugdaleParams {
+    /// The constants for a [`Pair`] (K from its composite modulus).
+    pub fn for_pair(pair: &Pair, work_of_adhesion: f64, z0: f64) -> Self {
+        Self {
+            k: pair.k(),
+            work_of_adhesion,
+            z0,
+        }
+    }
+
+    fn validated(self) -> Result<Self, MkError> {
+        positive("k", self.k)?;
+        positive("work_of_adhesion", self.work_of_adhesion)?;
+        positive("z0", self.z0)?;
+        Ok(self)
     }
 }
 
+/// The constants of a JKR interface: the argument of [`Jkr::new`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JkrParams {
+    /// Maugis' K = 4/3 E* (Pa, eq 6).
+    pub k: f64,
+    /// Work of adhesion w (J/m^2).
+    pub work_of_adhesion: f64,
+}
+
 /// Hertz: F = K sqrt(R) delta^(3/2) for delta > 0, zero otherwise (K = 4/3 E*).
+///
+/// ```
+/// use contact_core::{AdhesionLaw, Path};
+/// let hertz = maugis_kim::Hertz::new(1e11)?;
+/// let f = hertz.force(4e-6, 1e-9, Path::Approach)?;
+/// assert!((f - 1e11 * 2e-3 * 1e-9f64.powf(1.5)).abs() < 1e-18);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hertz {
     k: f64,
@@ -30,14 +66,14 @@ impl Hertz {
     /// `k` = 4/3 E* (Pa).
     pub fn new(k: f64) -> Result<Self, MkError> {
         Ok(Self {
-            k: check_positive("k", k)?,
+            k: positive("k", k)?,
         })
     }
 }
 
 impl AdhesionLaw for Hertz {
     fn force(&self, radius: f64, delta: f64, _path: Path) -> Result<f64, LawError> {
-        check_positive("radius", radius)?;
+        positive("radius", radius)?;
         finite("delta", delta)?;
         Ok(if delta > 0.0 {
             self.k * radius.sqrt() * delta * delta.sqrt()
@@ -57,65 +93,77 @@ impl AdhesionLaw for Hertz {
 /// of Maugis-Kim: in contact F = K sqrt(R) delta^(3/2) - 2 pi w R; out of contact the
 /// Dugdale stress sigma0 = w/z0 acts where the rigid gap is below z0, so
 /// F = -2 pi w R (1 + delta/z0) for -z0 < delta < 0 and 0 below. No hysteresis.
+///
+/// ```
+/// use contact_core::{AdhesionLaw, Path};
+/// use maugis_kim::{Dmt, DugdaleParams};
+/// let dmt = Dmt::new(DugdaleParams { k: 1e11, work_of_adhesion: 1.0, z0: 0.2e-9 })?;
+/// // in touch (delta = 0) the pull is the DMT pull-off, 2 pi w R
+/// let f = dmt.force(1e-6, 0.0, Path::Approach)?;
+/// assert!((f + 2.0 * std::f64::consts::PI * 1e-6).abs() < 1e-18);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Dmt {
-    k: f64,
-    w: f64,
-    z0: f64,
+    p: DugdaleParams,
 }
 
 impl Dmt {
-    /// `k` = 4/3 E* (Pa), work of adhesion `w` (J/m^2), range `z0` (m).
-    pub fn new(k: f64, w: f64, z0: f64) -> Result<Self, MkError> {
+    /// The law of a Dugdale interface.
+    pub fn new(params: DugdaleParams) -> Result<Self, MkError> {
         Ok(Self {
-            k: check_positive("k", k)?,
-            w: check_positive("work_of_adhesion", w)?,
-            z0: check_positive("z0", z0)?,
+            p: params.validated()?,
         })
     }
 }
 
 impl AdhesionLaw for Dmt {
     fn force(&self, radius: f64, delta: f64, _path: Path) -> Result<f64, LawError> {
-        check_positive("radius", radius)?;
+        positive("radius", radius)?;
         finite("delta", delta)?;
-        let adh = 2.0 * PI * self.w * radius;
+        let adh = 2.0 * PI * self.p.work_of_adhesion * radius;
         Ok(if delta >= 0.0 {
-            self.k * radius.sqrt() * delta * delta.sqrt() - adh
-        } else if delta > -self.z0 {
-            -adh * (1.0 + delta / self.z0)
+            self.p.k * radius.sqrt() * delta * delta.sqrt() - adh
+        } else if delta > -self.p.z0 {
+            -adh * (1.0 + delta / self.p.z0)
         } else {
             0.0
         })
     }
     fn jumps(&self, _radius: f64) -> Result<Jumps, LawError> {
         Ok(Jumps {
-            jump_in: -self.z0,
-            jump_out: -self.z0,
+            jump_in: -self.p.z0,
+            jump_out: -self.p.z0,
         })
     }
     /// The Hertz term starts at delta = 0.
-    fn kinks(&self, _radius: f64) -> Result<Vec<f64>, LawError> {
-        Ok(vec![0.0])
+    fn kinks(&self, _radius: f64) -> Result<Vec<Option<f64>>, LawError> {
+        Ok(vec![Some(0.0)])
     }
 }
 
 /// Johnson-Kendall-Roberts, the lambda -> infinity limit. Nondimensionally (eq 7)
 /// Fbar = A^3 - sqrt(6) A^(3/2), Delta = A^2 - (2/3) sqrt(6 A); stable for
 /// A >= 6^(-1/3) (Delta_t = -3 6^(-2/3), Fbar_t = -5/6), jump-in at Delta = 0.
+///
+/// ```
+/// use maugis_kim::Jkr;
+/// // displacement-control pull-off at the turning point: -5/6 pi w R
+/// let f = Jkr::stable_force(Jkr::turning_delta())?;
+/// assert!((f + 5.0 / 6.0).abs() < 1e-12);
+/// # Ok::<(), maugis_kim::MkError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Jkr {
-    k: f64,
-    w: f64,
+    p: JkrParams,
 }
 
 impl Jkr {
-    /// `k` = 4/3 E* (Pa), work of adhesion `w` (J/m^2).
-    pub fn new(k: f64, w: f64) -> Result<Self, MkError> {
-        Ok(Self {
-            k: check_positive("k", k)?,
-            w: check_positive("work_of_adhesion", w)?,
-        })
+    /// The law of a JKR interface.
+    pub fn new(params: JkrParams) -> Result<Self, MkError> {
+        positive("k", params.k)?;
+        positive("work_of_adhesion", params.work_of_adhesion)?;
+        Ok(Self { p: params })
     }
 
     /// Turning-point interference Delta_t = -3 6^(-2/3).
@@ -140,7 +188,13 @@ impl Jkr {
         let y = if g(y_t) >= 0.0 {
             y_t
         } else {
-            brent("JKR Delta(A) = Delta", g, y_t, y_hi, 1e-15, 0.0, 200)?
+            brent(
+                "JKR Delta(A) = Delta",
+                |y| Ok::<_, CoreError>(g(y)),
+                y_t,
+                y_hi,
+                Tolerance::relative(1e-15).with_max_iter(200),
+            )?
         };
         let a = y * y;
         Ok(a * a * a - 6f64.sqrt() * a * y)
@@ -149,11 +203,12 @@ impl Jkr {
     /// Nondimensional force on a path (see [`MdCurve::force`] for the path rule).
     pub fn force_nd(delta: f64, path: Path) -> Result<f64, MkError> {
         if delta.is_nan() {
-            return Err(MkError::Invalid {
+            return Err(CoreError::Invalid {
                 field: "delta",
                 value: delta,
                 allowed: "a number",
-            });
+            }
+            .into());
         }
         if delta >= 0.0 {
             return Self::stable_force(delta);
@@ -169,13 +224,13 @@ impl Jkr {
 
 impl AdhesionLaw for Jkr {
     fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
-        let sc = Scales::new(self.k, self.w, radius)?;
+        let sc = Scales::new(self.p.k, self.p.work_of_adhesion, radius)?;
         finite("delta", delta)?;
         let path = nd_path(path, sc.interference);
         Ok(Self::force_nd(delta / sc.interference, path)? * sc.force)
     }
     fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
-        let sc = Scales::new(self.k, self.w, radius)?;
+        let sc = Scales::new(self.p.k, self.p.work_of_adhesion, radius)?;
         Ok(Jumps {
             jump_in: 0.0,
             jump_out: Self::turning_delta() * sc.interference,
@@ -192,37 +247,45 @@ fn nd_path(path: Path, scale: f64) -> Path {
 
 /// Maugis-Dugdale with the Kim extension (paper eqs 6-11) as an SI law: lambda is
 /// recomputed from the radius of each call, lambda = 2 sigma0 (R/(pi w K^2))^(1/3).
+///
+/// ```
+/// use contact_core::{paper, AdhesionLaw, Material, Pair, Path};
+/// use maugis_kim::{DugdaleParams, MaugisKim};
+/// // a Ru asperity of Table 1 on a rigid flat: lambda = 1.80
+/// let pair = Pair::new(Material::new(paper::RU)?, None, paper::RADIUS)?;
+/// let mk = MaugisKim::new(DugdaleParams::for_pair(&pair, paper::WORK_OF_ADHESION, paper::Z0))?;
+/// assert!((mk.lambda(paper::RADIUS) - 1.80).abs() < 5e-3);
+/// // retracting from 1 nm, the asperity still pulls at zero interference
+/// let f = mk.force(paper::RADIUS, 0.0, Path::Retract { from: 1e-9 })?;
+/// assert!(f < 0.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MaugisKim {
-    k: f64,
-    w: f64,
-    z0: f64,
+    p: DugdaleParams,
 }
 
 impl MaugisKim {
-    /// `k` = 4/3 E* (Pa), work of adhesion `w` (J/m^2), Dugdale range `z0` (m);
-    /// sigma0 = w/z0.
-    pub fn new(k: f64, w: f64, z0: f64) -> Result<Self, MkError> {
+    /// The law of a Dugdale interface.
+    pub fn new(params: DugdaleParams) -> Result<Self, MkError> {
         Ok(Self {
-            k: check_positive("k", k)?,
-            w: check_positive("work_of_adhesion", w)?,
-            z0: check_positive("z0", z0)?,
+            p: params.validated()?,
         })
     }
 
     /// The transition parameter for a sphere of `radius` (m).
     pub fn lambda(&self, radius: f64) -> f64 {
-        Scales::lambda(self.k, self.w, self.z0, radius)
+        Scales::lambda(self.p.k, self.p.work_of_adhesion, self.p.z0, radius)
     }
 
     /// Scales of eq 7 for a sphere of `radius` (m).
     pub fn scales(&self, radius: f64) -> Result<Scales, MkError> {
-        Scales::new(self.k, self.w, radius)
+        Scales::new(self.p.k, self.p.work_of_adhesion, radius)
     }
 
     /// The nondimensional curve of a sphere of `radius` (m).
     pub fn curve(&self, radius: f64) -> Result<MdCurve, MkError> {
-        check_positive("radius", radius)?;
+        positive("radius", radius)?;
         MdCurve::new(self.lambda(radius))
     }
 }
@@ -244,18 +307,15 @@ impl AdhesionLaw for MaugisKim {
     }
     /// -z0: the rigid gap at the centre equals the Dugdale range (no turning point needed).
     fn jump_in(&self, _radius: f64) -> Result<f64, LawError> {
-        Ok(-self.z0)
+        Ok(-self.p.z0)
     }
     /// For lambda <= lambda_c the stable branch passes the junction of the non-contact
-    /// and contact branches, where the curvature of F(delta) changes; NaN above lambda_c
-    /// (the stable branch ends at the turning point first), so the list keeps its length.
-    fn kinks(&self, radius: f64) -> Result<Vec<f64>, LawError> {
+    /// and contact branches, where the curvature of F(delta) changes; absent above
+    /// lambda_c (the stable branch ends at the turning point first).
+    fn kinks(&self, radius: f64) -> Result<Vec<Option<f64>>, LawError> {
         let sc = self.scales(radius)?;
         let curve = MdCurve::new(self.lambda(radius))?;
-        Ok(vec![if curve.lambda() <= crate::LAMBDA_CRITICAL {
-            curve.junction().delta * sc.interference
-        } else {
-            f64::NAN
-        }])
+        Ok(vec![(curve.lambda() <= crate::LAMBDA_CRITICAL)
+            .then(|| curve.junction().delta * sc.interference)])
     }
 }

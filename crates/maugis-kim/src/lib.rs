@@ -9,6 +9,18 @@
 //! Nondimensional groups (eq 7), with K = 4/3 E*, w the work of adhesion, R the radius:
 //! A = a (K/(pi w R^2))^(1/3), Fbar = F/(pi w R), Delta = delta (K^2/(pi^2 w^2 R))^(1/3),
 //! lambda = 2 sigma0 (R/(pi w K^2))^(1/3), sigma0 = w/z0.
+//!
+//! ```
+//! use maugis_kim::MdCurve;
+//! // near the DMT end the load-control pull-off tends to -2 pi w R ...
+//! let dmt_like = MdCurve::new(1e-3)?;
+//! assert!((dmt_like.pull_off_load_control()?.force + 2.0).abs() < 5e-3);
+//! // ... and near the JKR end to -3/2 pi w R (jump-out at -5/6 pi w R)
+//! let jkr_like = MdCurve::new(1e3)?;
+//! assert!((jkr_like.pull_off_load_control()?.force + 1.5).abs() < 2e-2);
+//! assert!((jkr_like.pull_off_displacement_control()?.force + 5.0 / 6.0).abs() < 2e-2);
+//! # Ok::<(), maugis_kim::MkError>(())
+//! ```
 
 mod error;
 mod laws;
@@ -16,6 +28,6 @@ pub mod md;
 mod scales;
 
 pub use error::MkError;
-pub use laws::{Dmt, Hertz, Jkr, MaugisKim};
+pub use laws::{Dmt, DugdaleParams, Hertz, Jkr, JkrParams, MaugisKim};
 pub use md::{Branch, MdCurve, MdPoint, LAMBDA_CRITICAL};
 pub use scales::Scales;

@@ -14,8 +14,9 @@
 //! Delta_t (the turning point) and then rises for ever; the part after Delta_t is stable
 //! under displacement control. Derivations: `docs/theory.md`.
 
-use crate::error::{check_positive, MkError};
-use contact_core::numeric::brent_with_values;
+use crate::error::MkError;
+use contact_core::numeric::{brent_from, Sample, Tolerance};
+use contact_core::{finite, positive, CoreError};
 use contact_core::Path;
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -49,6 +50,7 @@ pub struct MdPoint {
     /// The contact-branch parameter s = sqrt(m^2 - 1) (infinite on the non-contact
     /// branch). Reported because m = c/a rounded to a double cannot resolve s < 1e-8.
     pub s: f64,
+    /// Which branch the point lies on.
     pub branch: Branch,
     /// Stable under displacement control (after the turning point along the curve).
     pub stable: bool,
@@ -205,7 +207,7 @@ struct Turning {
 impl MdCurve {
     /// The curve for transition parameter `lambda` (finite, > 0).
     pub fn new(lambda: f64) -> Result<Self, MkError> {
-        check_positive("lambda", lambda)?;
+        positive("lambda", lambda)?;
         let qa = PI * lambda / 4.0;
         let qb = 4.0 / 3.0 * lambda * lambda * (FRAC_PI_2 - 1.0);
         // positive root of qa C^2 + qb C - 1 = 0, in the form without cancellation
@@ -284,14 +286,12 @@ impl MdCurve {
             point.stable = true;
             return Ok(Turning { point, u: None });
         };
-        let u = brent_with_values(
+        let u = brent_from(
             "turning point dDelta/ds = 0",
-            f,
+            |u| Ok::<_, CoreError>(f(u)),
             lo,
             hi,
-            0.0,
-            1e-14,
-            MAX_ITER,
+            Tolerance::absolute(1e-14).with_max_iter(MAX_ITER),
         )?;
         let mut point = Contact::at(l, u.exp()).point(true);
         point.stable = true;
@@ -304,14 +304,14 @@ impl MdCurve {
         self.turning().map(|t| t.point)
     }
 
-    /// Pull-off force under displacement control: the force at the turning point
-    /// (JKR limit -5/6).
-    pub fn pull_off_displacement_control(&self) -> Result<f64, MkError> {
-        self.turning_point().map(|p| p.force)
+    /// Pull-off under displacement control: the turning point, where a retracting
+    /// sphere jumps out (force: JKR limit -5/6).
+    pub fn pull_off_displacement_control(&self) -> Result<MdPoint, MkError> {
+        self.turning_point()
     }
 
-    /// Pull-off force under load control: the minimum force on the stable branch (DMT
-    /// limit -2, JKR limit -3/2).
+    /// Pull-off under load control: the point of minimum force on the stable branch
+    /// (force: DMT limit -2, JKR limit -3/2).
     pub fn pull_off_load_control(&self) -> Result<MdPoint, MkError> {
         let l = self.lambda;
         let turning = self.turning()?;
@@ -331,14 +331,12 @@ impl MdCurve {
             let u1 = (u0 + step).min(u_hi);
             let f1 = f(u1);
             if f0 < 0.0 && f1 >= 0.0 {
-                let u = brent_with_values(
+                let u = brent_from(
                     "pull-off dFbar/ds = 0",
-                    f,
-                    (u0, f0),
-                    (u1, f1),
-                    0.0,
-                    1e-13,
-                    MAX_ITER,
+                    |u| Ok::<_, CoreError>(f(u)),
+                    Sample { x: u0, f: f0 },
+                    Sample { x: u1, f: f1 },
+                    Tolerance::absolute(1e-13).with_max_iter(MAX_ITER),
                 )?;
                 let p = Contact::at(l, u.exp()).point(true);
                 if p.force < best.force {
@@ -353,13 +351,7 @@ impl MdCurve {
 
     /// The equilibrium on the stable branch at interference `delta` (Delta >= Delta_t).
     pub fn stable_point(&self, delta: f64) -> Result<MdPoint, MkError> {
-        if !delta.is_finite() {
-            return Err(MkError::Invalid {
-                field: "delta",
-                value: delta,
-                allowed: "finite",
-            });
-        }
+        finite("delta", delta)?;
         let junction = self.junction();
         if delta > junction.delta {
             // One root on the whole contact branch (the unstable part lies below Delta_j).
@@ -458,23 +450,17 @@ impl MdCurve {
                 g_hi = g_lo;
                 lo -= 2.0;
                 if lo < U_MIN {
-                    return Err(MkError::Invalid {
-                        field: "delta",
-                        value: delta,
-                        allowed: "within the range a double can resolve on the contact branch",
-                    });
+                    return Err(MkError::Unresolvable { delta });
                 }
                 g_lo = g(lo);
             }
         }
-        let u = brent_with_values(
+        let u = brent_from(
             "Maugis-Dugdale Delta(s) = Delta",
-            g,
-            (lo, g_lo),
-            (hi, g_hi),
-            0.0,
-            1e-15,
-            MAX_ITER,
+            |u| Ok::<_, CoreError>(g(u)),
+            Sample { x: lo, f: g_lo },
+            Sample { x: hi, f: g_hi },
+            Tolerance::absolute(1e-15).with_max_iter(MAX_ITER),
         )?;
         Ok(Contact::at(l, u.exp()).point(true))
     }
@@ -491,11 +477,12 @@ impl MdCurve {
         };
         for (field, v) in [("delta", delta), ("from", from)] {
             if v.is_nan() {
-                return Err(MkError::Invalid {
+                return Err(CoreError::Invalid {
                     field,
                     value: v,
                     allowed: "a number",
-                });
+                }
+                .into());
             }
         }
         let d_in = self.jump_in_delta();
@@ -520,13 +507,7 @@ impl MdCurve {
     /// interference `delta_end`, `n` points (at least 4): a quarter on the non-contact
     /// branch, the rest log-spaced in s on the contact branch.
     pub fn curve(&self, n: usize, delta_end: f64) -> Result<Vec<MdPoint>, MkError> {
-        if !delta_end.is_finite() {
-            return Err(MkError::Invalid {
-                field: "delta_end",
-                value: delta_end,
-                allowed: "finite",
-            });
-        }
+        finite("delta_end", delta_end)?;
         let n = n.max(4);
         let n_nc = n / 4;
         let mut out = Vec::with_capacity(n);
@@ -589,7 +570,14 @@ fn guide() -> &'static [f64] {
                 let f = |u: f64| Contact::at(l, u.exp()).d_delta_sign(l);
                 bracket_sign_change(&f, 0.0, U_MIN, U_MAX)
                     .and_then(|(a, b)| {
-                        brent_with_values("turning guide", f, a, b, 0.0, 1e-6, MAX_ITER).ok()
+                        brent_from(
+                            "turning guide",
+                            |u| Ok::<_, CoreError>(f(u)),
+                            a,
+                            b,
+                            Tolerance::absolute(1e-6).with_max_iter(MAX_ITER),
+                        )
+                        .ok()
                     })
                     .unwrap_or(f64::NAN)
             })
@@ -656,13 +644,13 @@ fn contact_guess(lambda: f64, above_junction: f64) -> Option<f64> {
 }
 
 /// A bracket of width 2w around the guess g, widened a few times if needed.
-fn tight_bracket(f: &dyn Fn(f64) -> f64, g: f64) -> Option<((f64, f64), (f64, f64))> {
+fn tight_bracket(f: &dyn Fn(f64) -> f64, g: f64) -> Option<(Sample, Sample)> {
     let mut w = 0.01;
     for _ in 0..4 {
         let (a, b) = (g - w, g + w);
         let (fa, fb) = (f(a), f(b));
         if fa <= 0.0 && fb > 0.0 {
-            return Some(((a, fa), (b, fb)));
+            return Some((Sample { x: a, f: fa }, Sample { x: b, f: fb }));
         }
         w *= 8.0;
     }
@@ -676,7 +664,7 @@ fn bracket_sign_change(
     u0: f64,
     u_min: f64,
     u_max: f64,
-) -> Option<((f64, f64), (f64, f64))> {
+) -> Option<(Sample, Sample)> {
     let f0 = f(u0);
     if f0 > 0.0 {
         let (mut hi, mut f_hi) = (u0, f0);
@@ -685,7 +673,7 @@ fn bracket_sign_change(
             u -= 2.0;
             let fu = f(u);
             if fu <= 0.0 {
-                return Some(((u, fu), (hi, f_hi)));
+                return Some((Sample { x: u, f: fu }, Sample { x: hi, f: f_hi }));
             }
             hi = u;
             f_hi = fu;
@@ -698,7 +686,7 @@ fn bracket_sign_change(
             u += 2.0;
             let fu = f(u);
             if fu > 0.0 {
-                return Some(((lo, f_lo), (u, fu)));
+                return Some((Sample { x: lo, f: f_lo }, Sample { x: u, f: fu }));
             }
             lo = u;
             f_lo = fu;

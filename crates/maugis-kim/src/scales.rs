@@ -1,4 +1,5 @@
-use crate::error::{check_positive, MkError};
+use crate::error::MkError;
+use contact_core::positive;
 use std::f64::consts::PI;
 
 /// The scales of eq 7 for one sphere: SI = nondimensional x scale.
@@ -15,9 +16,9 @@ pub struct Scales {
 impl Scales {
     /// Scales for modulus `k` = 4/3 E* (Pa), work of adhesion `w` (J/m^2), radius `r` (m).
     pub fn new(k: f64, w: f64, r: f64) -> Result<Self, MkError> {
-        check_positive("k", k)?;
-        check_positive("work_of_adhesion", w)?;
-        check_positive("radius", r)?;
+        positive("k", k)?;
+        positive("work_of_adhesion", w)?;
+        positive("radius", r)?;
         Ok(Self {
             interference: (PI * PI * w * w * r / (k * k)).cbrt(),
             radius: (PI * w * r * r / k).cbrt(),

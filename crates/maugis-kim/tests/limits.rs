@@ -1,7 +1,7 @@
 //! Analytic limits and invariants of the Maugis-Kim curve.
 
 use contact_core::{AdhesionLaw, Path};
-use maugis_kim::{Branch, Dmt, Jkr, MaugisKim, MdCurve, LAMBDA_CRITICAL};
+use maugis_kim::{Branch, Dmt, DugdaleParams, Jkr, MaugisKim, MdCurve, LAMBDA_CRITICAL};
 use std::f64::consts::PI;
 
 /// Residuals of eqs 8-10 for a contact point, each relative to the size of its terms.
@@ -90,7 +90,7 @@ fn pull_off_tends_to_dmt_at_small_lambda() {
 fn pull_off_tends_to_jkr_at_large_lambda() {
     let c = MdCurve::new(1e3).unwrap();
     let lc = c.pull_off_load_control().unwrap().force;
-    let dc = c.pull_off_displacement_control().unwrap();
+    let dc = c.pull_off_displacement_control().unwrap().force;
     assert!((lc + 1.5).abs() < 2e-2, "load control {lc}");
     assert!((dc + 5.0 / 6.0).abs() < 2e-2, "displacement control {dc}");
     let t = c.turning_point().unwrap();
@@ -161,8 +161,8 @@ fn dmt_law_agrees_with_maugis_kim_at_small_lambda_in_si() {
     let k = 4.0 / 3.0 * 410e9 / 0.91;
     let (w, r) = (1.0, 4e-6);
     let worst = |z0: f64| {
-        let mk = MaugisKim::new(k, w, z0).unwrap();
-        let dmt = Dmt::new(k, w, z0).unwrap();
+        let mk = MaugisKim::new(DugdaleParams { k, work_of_adhesion: w, z0 }).unwrap();
+        let dmt = Dmt::new(DugdaleParams { k, work_of_adhesion: w, z0 }).unwrap();
         let mut e: f64 = 0.0;
         for frac in [-0.8, -0.3, -0.05, 0.0] {
             let delta = frac * z0;
@@ -217,7 +217,7 @@ fn path_rule_jump_in_and_jump_out() {
 #[test]
 fn si_law_matches_nondimensional_curve() {
     let k = 4.0 / 3.0 * 410e9 / 0.91;
-    let mk = MaugisKim::new(k, 1.0, 0.169e-9).unwrap();
+    let mk = MaugisKim::new(DugdaleParams { k, work_of_adhesion: 1.0, z0: 0.169e-9 }).unwrap();
     let r = 4e-6;
     let sc = mk.scales(r).unwrap();
     let c = mk.curve(r).unwrap();
@@ -236,7 +236,7 @@ fn nan_inputs_are_errors_not_zero_forces() {
     assert!(c.curve(10, f64::NAN).is_err());
     assert!(Jkr::force_nd(f64::NAN, Path::Approach).is_err());
     assert!(MdCurve::new(f64::NAN).is_err() && MdCurve::new(-1.0).is_err());
-    let mk = MaugisKim::new(3e11, 1.0, 1e-10).unwrap();
+    let mk = MaugisKim::new(DugdaleParams { k: 3e11, work_of_adhesion: 1.0, z0: 1e-10 }).unwrap();
     assert!(mk.force(4e-6, f64::NAN, Path::Approach).is_err());
     assert!(mk.force(f64::NAN, 1e-9, Path::Approach).is_err());
 }

@@ -74,7 +74,7 @@ proptest! {
         let lc = c.pull_off_load_control().unwrap();
         let dc = c.pull_off_displacement_control().unwrap();
         prop_assert!(lc.force >= -2.0 - 1e-9 && lc.force <= -1.5 + 1e-3, "{}", lc.force);
-        prop_assert!(dc >= lc.force - 1e-12);
+        prop_assert!(dc.force >= lc.force - 1e-12);
         prop_assert!(lc.stable);
         if lc.branch == Branch::NonContact {
             prop_assert!(l <= maugis_kim::LAMBDA_CRITICAL);
