@@ -137,6 +137,10 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         self.plasticity.delta_cp()
     }
 
+    fn radius(&self) -> f64 {
+        self.plasticity.radius()
+    }
+
     fn plastic_state(&self, history: AsperityHistory) -> PlasticState {
         self.plasticity.state(history.delta_max)
     }

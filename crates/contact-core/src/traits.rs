@@ -116,6 +116,9 @@ pub trait AsperityModel {
     /// Interference delta_CP (m) at which the asperity starts to yield (infinite if never).
     fn delta_cp(&self) -> f64;
 
+    /// Initial tip radius R (m): interferences beyond it leave contact mechanics' ground.
+    fn radius(&self) -> f64;
+
     /// Plastic state for a history.
     fn plastic_state(&self, history: AsperityHistory) -> PlasticState;
 
@@ -147,14 +150,17 @@ pub struct Estimate {
 }
 
 /// The length scales (m) of a surface law that searches over the separation size their
-/// samples by: nothing of interest in the law is narrower than `finest`, and `roughness`
-/// is the scale of its bulk (sigma_s for a Greenwood-Williamson surface).
+/// samples by: nothing of interest in the law is narrower than `finest`, `roughness` is
+/// the scale of its bulk (sigma_s for a Greenwood-Williamson surface), and below `deepest`
+/// the law leaves its ground (asperities pressed beyond their own radius).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct LengthScales {
     /// The narrowest feature (jump distances, interaction range, elastic recovery).
     pub finest: f64,
     /// The bulk scale.
     pub roughness: f64,
+    /// The deepest separation the law is meant for.
+    pub deepest: f64,
 }
 
 /// The contact law of a rough surface against a flat: pressure (Pa, compressive > 0)
@@ -183,6 +189,12 @@ pub trait SurfaceLaw {
         history: &Self::History,
         path: Path,
     ) -> Result<Estimate, LawError>;
+
+    /// A cheaper pressure (Pa) for scans that only rank samples (accurate to about 1e-3 of
+    /// the forces summed); by default the pressure itself.
+    fn pressure_scan(&self, d: f64, history: &Self::History, path: Path) -> Result<f64, LawError> {
+        self.pressure(d, history, path)
+    }
 
     /// History after loading to separation `d` (m).
     fn load(&self, history: &Self::History, d: f64) -> Self::History;

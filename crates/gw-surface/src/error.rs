@@ -4,24 +4,20 @@ use thiserror::Error;
 /// Errors of the `gw-surface` crate.
 #[derive(Debug, Error)]
 pub enum GwError {
-    /// A parameter outside its domain.
-    #[error("invalid {field} = {value}: must be {allowed}")]
-    Invalid {
-        field: &'static str,
-        value: f64,
-        allowed: &'static str,
-    },
+    /// A parameter outside its domain, or a quadrature/root failure.
+    #[error("surface: {0}")]
+    Core(#[from] CoreError),
     /// The asperity law failed at a height.
     #[error("asperity law failed at height h = {height:e} m, separation d = {d:e} m: {source}")]
     Asperity {
+        /// Asperity height (m).
         height: f64,
+        /// Separation (m).
         d: f64,
+        /// The law's error.
         #[source]
         source: LawError,
     },
-    /// Quadrature or root failure.
-    #[error("surface integral: {0}")]
-    Numeric(#[from] CoreError),
 }
 
 impl From<GwError> for LawError {

@@ -4,9 +4,11 @@ use serde::Serialize;
 /// initial height h has reached.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum GwHistory {
-    /// Loaded only by one flat, deepest separation `deepest` (m; +infinity if never
-    /// loaded): delta_max(h) = h - deepest. The whole history is one number.
-    Flat { deepest: f64 },
+    /// Loaded only by one flat: delta_max(h) = h - deepest. The whole history is one number.
+    Flat {
+        /// The deepest separation reached (m; +infinity if never loaded).
+        deepest: f64,
+    },
     /// Any delta_max(h), tabulated on a height grid.
     Table(HeightTable),
 }

@@ -7,9 +7,10 @@
 //!
 //! The integrand jumps where asperities jump in or out and has kinks at yield onset and
 //! where the effective radius switches (delta = delta_res): the height axis is split there
-//! and each panel integrated on its own, adaptively (tanh-sinh) or with a fixed
-//! Gauss-Legendre rule (square-root substitution on the panel at the contact edge,
-//! where the force has a square-root singularity).
+//! and each panel integrated with error control by globally adaptive nested Gauss-Legendre
+//! rules (square-root substitution on the panel at the contact edge, where the force has
+//! a square-root singularity). The split points only save work: an undeclared kink of a
+//! user's law is refined around by the error control.
 
 mod error;
 mod history;
@@ -17,4 +18,4 @@ mod surface;
 
 pub use error::GwError;
 pub use history::{GwHistory, HeightTable};
-pub use surface::{GreenwoodWilliamson, Quadrature, TAIL_SIGMAS};
+pub use surface::{GreenwoodWilliamson, Quadrature, Roughness, TAIL_SIGMAS};

@@ -2,18 +2,35 @@
 
 use asperity_plastic::{Elastic, ElastoPlasticAsperity, EtsionKadin, YieldModulus};
 use contact_core::numeric::GaussLegendre;
-use contact_core::{AsperityModel, Material, Pair, Path, SurfaceLaw};
-use gw_surface::{GreenwoodWilliamson, GwHistory, HeightTable, Quadrature};
-use maugis_kim::{Dmt, Hertz, MaugisKim};
+use contact_core::{
+    paper, AdhesionLaw, AsperityModel, Jumps, LawError, Material, Pair, Path, SurfaceLaw,
+};
+use gw_surface::{GreenwoodWilliamson, GwHistory, HeightTable, Quadrature, Roughness};
+use maugis_kim::{Dmt, DugdaleParams, Hertz, MaugisKim};
 use std::f64::consts::PI;
 
-const SIGMA: f64 = 7.78e-9;
-const DENSITY: f64 = 1e13;
-const R: f64 = 4e-6;
+const SIGMA: f64 = paper::SIGMA_S;
+const DENSITY: f64 = paper::ASPERITY_DENSITY;
+const R: f64 = paper::RADIUS;
+const ROUGH: Roughness = Roughness {
+    sigma_s: SIGMA,
+    asperity_density: DENSITY,
+};
 
 fn ru_pair() -> Pair {
-    let m = Material::new(410e9, 0.3, 3.42e9).unwrap();
+    let m = Material::new(paper::RU).unwrap();
     Pair::new(m, Some(m), R).unwrap()
+}
+
+fn dugdale(pair: &Pair) -> DugdaleParams {
+    DugdaleParams::for_pair(pair, paper::WORK_OF_ADHESION, paper::Z0)
+}
+
+fn q(rel_tol: f64) -> Quadrature {
+    Quadrature {
+        rel_tol,
+        ..Quadrature::default()
+    }
 }
 
 fn phi(u: f64) -> f64 {
@@ -38,7 +55,7 @@ fn independent(t: f64, g: impl Fn(f64) -> f64) -> f64 {
 fn hertz_surface_matches_the_classic_gw_integral() {
     let pair = ru_pair();
     let asp = ElastoPlasticAsperity::new(Elastic::new(R).unwrap(), Hertz::new(pair.k()).unwrap());
-    let gw = GreenwoodWilliamson::new(asp, SIGMA, DENSITY, Quadrature::default()).unwrap();
+    let gw = GreenwoodWilliamson::new(asp, ROUGH, Quadrature::default()).unwrap();
     for t in [-2.0, -0.5, 0.0, 0.7, 1.5, 3.0, 5.0] {
         let d = t * SIGMA;
         let p = gw.pressure(d, &GwHistory::VIRGIN, Path::Approach).unwrap();
@@ -52,10 +69,10 @@ fn hertz_surface_matches_the_classic_gw_integral() {
 #[test]
 fn dmt_surface_matches_an_independent_integral() {
     let pair = ru_pair();
-    let (w, z0) = (1.0, 0.169e-9);
-    let dmt = Dmt::new(pair.k(), w, z0).unwrap();
+    let (w, z0) = (paper::WORK_OF_ADHESION, paper::Z0);
+    let dmt = Dmt::new(dugdale(&pair)).unwrap();
     let asp = ElastoPlasticAsperity::new(Elastic::new(R).unwrap(), dmt);
-    let gw = GreenwoodWilliamson::new(asp, SIGMA, DENSITY, Quadrature::default()).unwrap();
+    let gw = GreenwoodWilliamson::new(asp, ROUGH, Quadrature::default()).unwrap();
     for t in [-1.0, 0.0, 1.0, 2.5, 4.0] {
         let d = t * SIGMA;
         let p = gw.pressure(d, &GwHistory::VIRGIN, Path::Approach).unwrap();
@@ -78,55 +95,84 @@ fn dmt_surface_matches_an_independent_integral() {
     }
 }
 
-fn ru_surface(q: Quadrature) -> GreenwoodWilliamson<ElastoPlasticAsperity<EtsionKadin, MaugisKim>> {
+fn ru_surface(
+    quad: Quadrature,
+) -> GreenwoodWilliamson<ElastoPlasticAsperity<EtsionKadin, MaugisKim>> {
     let pair = ru_pair();
-    let ek = EtsionKadin::new(&pair, YieldModulus::Composite).unwrap();
-    let mk = MaugisKim::new(pair.k(), 1.0, 0.169e-9).unwrap();
-    GreenwoodWilliamson::new(ElastoPlasticAsperity::new(ek, mk), SIGMA, DENSITY, q).unwrap()
+    let ek = EtsionKadin::new(&pair, YieldModulus::AsPrinted).unwrap();
+    let mk = MaugisKim::new(dugdale(&pair)).unwrap();
+    GreenwoodWilliamson::new(ElastoPlasticAsperity::new(ek, mk), ROUGH, quad).unwrap()
 }
 
-#[test]
-fn adaptive_quadrature_converges_to_1e8() {
-    let loose = ru_surface(Quadrature::Adaptive { rel_tol: 1e-10 });
-    let tight = ru_surface(Quadrature::Adaptive { rel_tol: 1e-13 });
-    let hist = GwHistory::Flat {
-        deepest: 0.5 * SIGMA,
-    };
-    for (d, path) in [
+/// (separation, path) cases on a surface loaded to half a sigma: approach above and below
+/// the deepest point, retraction through the adhesive well.
+fn cases() -> Vec<(f64, Path)> {
+    let from = 0.5 * SIGMA;
+    vec![
         (2.0 * SIGMA, Path::Approach),
         (0.2 * SIGMA, Path::Approach),
-        (0.8 * SIGMA, Path::Retract { from: 0.5 * SIGMA }),
-        (1.6 * SIGMA, Path::Retract { from: 0.5 * SIGMA }),
-    ] {
-        let (a, _, _) = loose.pressure_detailed(d, &hist, path).unwrap();
-        let (b, _, _) = tight.pressure_detailed(d, &hist, path).unwrap();
-        assert!(
-            (a - b).abs() <= 1e-8 * b.abs(),
-            "d {d} {path:?}: {a} vs {b}"
-        );
+        (0.55 * SIGMA, Path::Retract { from }),
+        (0.8 * SIGMA, Path::Retract { from }),
+        (1.6 * SIGMA, Path::Retract { from }),
+        (3.0 * SIGMA, Path::Retract { from }),
+    ]
+}
+
+#[test]
+fn every_tolerance_is_met_and_its_error_estimate_is_honest() {
+    let reference = ru_surface(q(1e-14));
+    let hist = GwHistory::Flat {
+        deepest: 0.5 * SIGMA,
+    };
+    for rel in [1e-4, 1e-6, 1e-8, 1e-10] {
+        let gw = ru_surface(q(rel));
+        for (d, path) in cases() {
+            let exact = reference.pressure_integral(d, &hist, path).unwrap();
+            let r = gw.pressure_integral(d, &hist, path).unwrap();
+            let err = (r.value - exact.value).abs();
+            // the target is relative to the sum of |forces|, which is at least |pressure|
+            assert!(err <= r.error + 2.0 * exact.error, "rel {rel} d {d} {path:?}: err {err:e} > estimate {:e}", r.error);
+            assert!(err <= rel * exact.value.abs().max(1e-300) * 50.0 || err <= r.error, "rel {rel} d {d}");
+        }
+    }
+}
+
+/// A DMT law that declares no kink: the surface must reach the same accuracy without it.
+#[derive(Debug, Clone, Copy)]
+struct SilentDmt(Dmt);
+
+impl AdhesionLaw for SilentDmt {
+    fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
+        self.0.force(radius, delta, path)
+    }
+    fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
+        self.0.jumps(radius)
     }
 }
 
 #[test]
-fn gauss_legendre_mode_converges_to_the_adaptive_mode() {
-    let acc = ru_surface(Quadrature::Adaptive { rel_tol: 1e-12 });
+fn a_law_that_declares_no_kinks_is_integrated_to_the_same_tolerance() {
+    let pair = ru_pair();
+    let dmt = Dmt::new(dugdale(&pair)).unwrap();
+    let ek = EtsionKadin::new(&pair, YieldModulus::AsPrinted).unwrap();
+    let declared = GreenwoodWilliamson::new(ElastoPlasticAsperity::new(ek, dmt), ROUGH, q(1e-13)).unwrap();
     let hist = GwHistory::Flat {
         deepest: 0.5 * SIGMA,
     };
-    let path = Path::Retract { from: 0.5 * SIGMA };
-    let d = 1.2 * SIGMA;
-    let exact = acc.pressure(d, &hist, path).unwrap();
-    let mut last = f64::INFINITY;
-    for nodes in [4, 8, 16, 32] {
-        let gl = ru_surface(Quadrature::GaussLegendre {
-            nodes,
-            panel_sigmas: 0.5,
-        });
-        let e = (gl.pressure(d, &hist, path).unwrap() - exact).abs() / exact.abs();
-        assert!(e < last.max(1e-12), "nodes {nodes}: error {e} after {last}");
-        last = e;
+    for rel in [1e-6, 1e-10] {
+        let silent =
+            GreenwoodWilliamson::new(ElastoPlasticAsperity::new(ek, SilentDmt(dmt)), ROUGH, q(rel)).unwrap();
+        for (d, path) in cases() {
+            let a = declared.pressure(d, &hist, path).unwrap();
+            let b = silent.pressure_integral(d, &hist, path).unwrap();
+            assert!(
+                (a - b.value).abs() <= b.error.max(1e-13 * a.abs()),
+                "rel {rel} d {d} {path:?}: {a} vs {} (estimate {:e})",
+                b.value,
+                b.error
+            );
+        }
     }
-    assert!(last < 1e-6, "{last}");
 }
 
 #[test]
@@ -149,11 +195,10 @@ fn one_number_history_agrees_with_the_general_history() {
 #[test]
 fn elastic_loading_pressure_is_continuous_and_monotone() {
     let pair = ru_pair();
-    let mk = MaugisKim::new(pair.k(), 1.0, 0.169e-9).unwrap();
+    let mk = MaugisKim::new(dugdale(&pair)).unwrap();
     let gw = GreenwoodWilliamson::new(
         ElastoPlasticAsperity::new(Elastic::new(R).unwrap(), mk),
-        SIGMA,
-        DENSITY,
+        ROUGH,
         Quadrature::default(),
     )
     .unwrap();
@@ -181,13 +226,29 @@ fn history_only_deepens() {
     assert_eq!(h, h2);
     let h3 = gw.load(&h, 0.5 * SIGMA);
     assert_eq!(h3.deepest(), Some(0.5 * SIGMA));
-    assert!(gw.asperity().yield_interference() > 0.0);
+    assert!(gw.asperity().delta_cp() > 0.0);
+}
+
+#[test]
+fn reaches_bound_where_the_pressure_vanishes_on_each_path() {
+    let gw = ru_surface(Quadrature::default());
+    let hist = gw.load(&gw.virgin(), 0.5 * SIGMA);
+    let approach = gw.reach(&hist, Path::Approach).unwrap();
+    let retract = gw.reach(&hist, Path::Retract { from: 0.5 * SIGMA }).unwrap();
+    assert!(retract >= approach);
+    for (top, path) in [(approach, Path::Approach), (retract, Path::Retract { from: 0.5 * SIGMA })] {
+        assert_eq!(gw.pressure(top * 1.0001, &hist, path).unwrap(), 0.0);
+    }
+    let s = gw.length_scales(&hist).unwrap();
+    assert!(s.finest <= s.roughness && s.finest >= 1e-6 * SIGMA);
+    // Maugis-Kim jumps in at -z0: the finest scale is no coarser than z0
+    assert!(s.finest <= paper::Z0 * 1.000001, "{s:?}");
 }
 
 #[test]
 fn fraction_beyond_the_fit_range_follows_the_gaussian_tail() {
     let gw = ru_surface(Quadrature::default());
-    let dcp = gw.asperity().yield_interference();
+    let dcp = gw.asperity().delta_cp();
     // delta_max(h) = h - deepest exceeds 10 delta_CP above h = deepest + 10 delta_CP
     let deepest = -10.0 * dcp;
     let flat = GwHistory::Flat { deepest };
@@ -195,9 +256,40 @@ fn fraction_beyond_the_fit_range_follows_the_gaussian_tail() {
     let shifted = GwHistory::Flat {
         deepest: deepest + SIGMA,
     };
+    // Q(1) = 0.15865525393145707 (normal upper tail at one sigma)
     assert!((gw.fraction_beyond(&shifted, 10.0) - 0.15865525393145707).abs() < 1e-9);
     let table = GwHistory::Table(HeightTable::virgin(-9.0 * SIGMA, 9.0 * SIGMA, 2001))
         .loaded(deepest + SIGMA);
     assert!((gw.fraction_beyond(&table, 10.0) - 0.15865525393145707).abs() < 1e-3);
     assert_eq!(gw.fraction_beyond(&GwHistory::VIRGIN, 10.0), 0.0);
+}
+
+#[test]
+fn load_share_beyond_counts_force_not_asperities() {
+    let gw = ru_surface(Quadrature::default());
+    let dcp = gw.asperity().delta_cp();
+    let d = -0.5 * SIGMA;
+    let hist = gw.virgin();
+    // ratio 0: every loaded asperity counts; the share is the whole load
+    let all = gw.load_share_beyond(d, &hist, Path::Approach, 0.0).unwrap();
+    assert!((all - 1.0).abs() < 1e-9, "{all}");
+    // the deepest asperities carry more than their count: share > count fraction
+    let ratio = 5.0;
+    let share = gw.load_share_beyond(d, &hist, Path::Approach, ratio).unwrap();
+    let count = gw.fraction_beyond(&hist.loaded(d), ratio)
+        / gw.fraction_beyond(&hist.loaded(d), 0.0);
+    assert!(share > count && share < 1.0, "share {share} count {count}");
+    assert_eq!(gw.load_share_beyond(d, &hist, Path::Approach, 1e6).unwrap(), 0.0);
+    let _ = dcp;
+}
+#[test]
+fn dbg_print() {
+    let hist = GwHistory::Flat { deepest: 0.5 * SIGMA };
+    for rel in [1e-4, 1e-6, 1e-8, 1e-10, 1e-14] {
+        let gw = ru_surface(q(rel));
+        for (d, path) in cases() {
+            let r = gw.pressure_integral(d, &hist, path).unwrap();
+            eprintln!("rel {rel:e} d/s {:.2} {path:?}: {:.10e} err {:.2e} evals {}", d / SIGMA, r.value, r.error, r.evaluations);
+        }
+    }
 }

@@ -1,21 +1,27 @@
-use crate::error::{positive, SwitchError};
-use contact_core::numeric::{brent_with_values, refine_sampled_min, GaussLegendre};
-use contact_core::{LawError, Path, SurfaceLaw};
+use crate::error::SwitchError;
+use contact_core::numeric::{
+    brent_from, geomspace, integrate_panels, linspace, refine_minima, AdaptiveRule,
+    Interpolant, PanelNodes, QuadTolerance, Sample, Tolerance,
+};
+use contact_core::{positive, CoreError, LengthScales, Path, SurfaceLaw};
 use serde::Serialize;
-use std::cell::RefCell;
 
 /// One point of a pressure curve: separation d (m), pressure (Pa, compressive > 0).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PressurePoint {
+    /// Separation (m).
     pub d: f64,
+    /// Pressure (Pa).
     pub pressure: f64,
 }
 
 /// The film that stores elastic energy at the end of impact (eq 17): thickness t_s (m)
 /// and Young's modulus E (Pa).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ImpactFilm {
+    /// t_s (m).
     pub thickness: f64,
+    /// E (Pa) of the film.
     pub youngs_modulus: f64,
 }
 
@@ -26,179 +32,280 @@ impl ImpactFilm {
     }
 }
 
-/// The rule for the d-integral of eq 17: `nodes`-point Gauss-Legendre on panels of
-/// `panel` times the surface's length scale. The loading pressure is smooth in d between
-/// kinks (a Gaussian convolution), so the default, 12 nodes on half-sigma panels,
-/// integrates it to about 1e-12 (the energy-balance test checks 1e-9 against adaptive
-/// quadrature); [`EnergyRule::COARSE`], 8 nodes per sigma, needs 3x fewer pressures for
-/// an error measured in `docs/performance.md`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EnergyRule {
-    pub nodes: usize,
-    pub panel: f64,
+/// The accuracy the switch computations aim for. The surface's own pressure error (its
+/// quadrature) adds to these and is reported with them; configure both together (the
+/// root package's accuracy modes do).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Precision {
+    /// d_e to this fraction of the surface's roughness length scale.
+    pub d_e: f64,
+    /// The pull-out pressure to this fraction of itself ...
+    pub pull_out: f64,
+    /// ... or to this absolute floor (Pa), whichever is larger; also the pressure below
+    /// which energy errors do not matter.
+    pub pressure_floor: f64,
 }
 
-impl EnergyRule {
-    /// 12 nodes on half-sigma panels.
-    pub const DEFAULT: Self = Self {
-        nodes: 12,
-        panel: 0.5,
-    };
-    /// 8 nodes on one-sigma panels.
-    pub const COARSE: Self = Self {
-        nodes: 8,
-        panel: 1.0,
-    };
-}
-
-impl Default for EnergyRule {
+impl Default for Precision {
+    /// d_e to 1e-10 sigma, pull-out to 1e-9, no floor.
     fn default() -> Self {
-        Self::DEFAULT
+        Self {
+            d_e: 1e-10,
+            pull_out: 1e-9,
+            pressure_floor: 0.0,
+        }
     }
 }
 
-/// The interpolating polynomial through a panel's Gauss-Legendre nodes and its two end
-/// points (barycentric form): inside the panel where eq 17 closes, the root search reads
-/// the pressure off it instead of solving the surface again. Passing through the exact
-/// end values keeps the energy at a panel end identical on both sides, so the bracket
-/// found panel by panel is a true bracket even where the film term p^2 t_s/(2E) is a
-/// large part of E_I.
-struct PanelPolynomial {
-    x: Vec<f64>,
-    y: Vec<f64>,
-    w: Vec<f64>,
+/// The end of impact (eq 17) with its error estimate.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EndOfImpact {
+    /// Separation d_e (m).
+    pub d_e: f64,
+    /// Its estimated error (m).
+    pub error: f64,
+    /// The approach pressure there, p_L(d_e) (Pa, > 0: compressive).
+    pub pressure: f64,
 }
 
-impl PanelPolynomial {
-    fn new(x: Vec<f64>, y: Vec<f64>) -> Self {
-        let w = (0..x.len())
-            .map(|j| {
-                1.0 / (0..x.len())
-                    .filter(|&k| k != j)
-                    .map(|k| x[j] - x[k])
-                    .product::<f64>()
-            })
+/// Nodes per half panel of the d-integral of eq 17.
+const ENERGY_NODES: usize = 6;
+/// The search for d_e gives up this many roughness scales below the first touch.
+const DEPTH_LIMIT: f64 = 1e4;
+
+/// The approach pressure, remembering every evaluation's error estimate so that the
+/// energy error they cause can be integrated afterwards.
+struct Approach<'a, S: SurfaceLaw> {
+    surface: &'a S,
+    history: &'a S::History,
+    errors: Vec<(f64, f64)>,
+}
+
+impl<S: SurfaceLaw> Approach<'_, S> {
+    fn p(&mut self, d: f64) -> Result<f64, SwitchError> {
+        let e = self.surface.pressure_estimate(d, self.history, Path::Approach)?;
+        self.errors.push((d, e.error));
+        Ok(e.value)
+    }
+
+    /// Integral of the pressure error estimates over [lo, hi] (J/m^2), trapezoidal on the
+    /// evaluations made (a dense set: the quadrature nodes).
+    fn error_integral(&mut self, lo: f64, hi: f64) -> f64 {
+        self.errors.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let inside: Vec<&(f64, f64)> = self
+            .errors
+            .iter()
+            .filter(|e| e.0 >= lo && e.0 <= hi)
             .collect();
-        Self { x, y, w }
-    }
-
-    fn eval(&self, t: f64) -> f64 {
-        let (mut num, mut den) = (0.0, 0.0);
-        for ((&xj, &yj), &wj) in self.x.iter().zip(&self.y).zip(&self.w) {
-            if t == xj {
-                return yj;
-            }
-            let c = wj / (t - xj);
-            num += c * yj;
-            den += c;
-        }
-        num / den
-    }
-}
-
-fn law_call<T>(err: &RefCell<Option<LawError>>, r: Result<T, LawError>, nan: T) -> T {
-    match r {
-        Ok(v) => v,
-        Err(e) => {
-            err.borrow_mut().get_or_insert(e);
-            nan
-        }
+        let trapezoid: f64 = inside
+            .windows(2)
+            .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
+            .sum();
+        // the ends of the range, at the nearest evaluation's error
+        let ends = inside.first().map_or(0.0, |e| e.1 * (e.0 - lo))
+            + inside.last().map_or(0.0, |e| e.1 * (hi - e.0));
+        trapezoid + ends
     }
 }
 
 /// Separation d_e (m) at the end of impact (eq 17):
 /// E_I = integral from d_e to infinity of p_L(d) dd + p_L(d_e)^2 t_s/(2E),
-/// with p_L the loading (approach) pressure of a surface with `history`.
+/// with p_L the loading (approach) pressure of a surface with `history`, `impact_energy`
+/// per unit *contact* area.
+///
+/// **d_e is the first closure of the energy balance on the way in at which the approach
+/// pressure is compressive** (`docs/theory.md` section 6.2): a closure in the tensile
+/// well, where adhesion still pulls the electrode in, is not an end of impact. The search
+/// starts where the first asperities touch (the approach reach) and integrates p_L
+/// downward in steps with error-controlled quadrature; the root is found on the
+/// interpolant of the accepted panels and verified with exact evaluations (Newton).
 pub fn end_of_impact<S: SurfaceLaw>(
     surface: &S,
     history: &S::History,
     impact_energy: f64,
     film: ImpactFilm,
-) -> Result<f64, SwitchError> {
-    end_of_impact_with(surface, history, impact_energy, film, EnergyRule::DEFAULT)
-}
-
-/// [`end_of_impact`] with a chosen rule for the d-integral.
-pub fn end_of_impact_with<S: SurfaceLaw>(
-    surface: &S,
-    history: &S::History,
-    impact_energy: f64,
-    film: ImpactFilm,
-    rule: EnergyRule,
-) -> Result<f64, SwitchError> {
-    if !(2..=64).contains(&rule.nodes) || !(rule.panel.is_finite() && rule.panel > 0.0) {
-        return Err(SwitchError::Invalid {
-            field: "energy_rule",
-            value: rule.panel,
-            allowed: format!("2..=64 nodes ({} given) on panels > 0", rule.nodes),
-        });
-    }
+    precision: Precision,
+) -> Result<EndOfImpact, SwitchError> {
     positive("impact_energy", impact_energy)?;
     positive("film_thickness", film.thickness)?;
     positive("film_youngs_modulus", film.youngs_modulus)?;
-    let top = surface.reach(history)?;
-    let scale = surface.length_scale();
-    let step = rule.panel * scale;
-    let mut kinks: Vec<f64> = surface
-        .kinks(history)
-        .into_iter()
-        .filter(|&k| k < top)
-        .collect();
+    positive("precision.d_e", precision.d_e)?;
+    let scales = surface.length_scales(history)?;
+    let first = solve_eq17(surface, history, impact_energy, film, precision, scales, 1.0)?;
+    let target = precision.d_e * scales.roughness;
+    if first.error <= target {
+        return Ok(first);
+    }
+    // the energy tolerance assumed a typical depth below the first touch: tighten once
+    let tighter = (target / first.error).clamp(1e-4, 0.5);
+    solve_eq17(surface, history, impact_energy, film, precision, scales, tighter)
+}
+
+fn solve_eq17<S: SurfaceLaw>(
+    surface: &S,
+    history: &S::History,
+    energy: f64,
+    film: ImpactFilm,
+    precision: Precision,
+    scales: LengthScales,
+    tighten: f64,
+) -> Result<EndOfImpact, SwitchError> {
+    let sigma = scales.roughness;
+    let top = surface.reach(history, Path::Approach)?;
+    let tol_d = precision.d_e * sigma;
+    let rule = AdaptiveRule::new(ENERGY_NODES)?;
+    // energy error -> d_e error: delta d_e ~ delta W / p(d_e) <= delta W (top - d_e)/E_I,
+    // with top - d_e about 20 sigma
+    let quad = QuadTolerance {
+        rel: 0.05 * precision.d_e * tighten,
+        abs: 0.05 * precision.d_e * tighten * energy,
+        max_width: 0.0,
+        max_panels: 4000,
+    };
+    let mut kinks = surface.kinks(history);
     kinks.sort_by(|a, b| b.total_cmp(a));
-    let gl = GaussLegendre::new(rule.nodes);
-    let err = RefCell::new(None);
-    let p = |x: f64| law_call(&err, surface.pressure(x, history, Path::Approach), f64::NAN);
-    let check = || match err.borrow_mut().take() {
-        Some(e) => Err(SwitchError::Surface(e)),
-        None => Ok(()),
+    let mut ap = Approach {
+        surface,
+        history,
+        errors: Vec::new(),
+    };
+    let integral = |ap: &mut Approach<S>, lo: f64, hi: f64| {
+        let mut breaks = vec![lo];
+        breaks.extend(kinks.iter().rev().filter(|&&k| k > lo && k < hi));
+        breaks.push(hi);
+        integrate_panels("eq 17 energy integral", |x| ap.p(x), &breaks, false, &rule, quad)
     };
     let mut hi = top;
-    let mut p_hi = p(hi);
+    let mut p_hi = 0.0;
     let mut work = 0.0; // integral of p_L from hi to top
-    let floor = top - 400.0 * scale;
+    let mut work_error = 0.0;
+    let mut step = 0.25 * sigma;
+    let floor = scales.deepest.max(top - DEPTH_LIMIT * sigma);
     while hi > floor {
-        let mut lo = hi - step;
-        if let Some(&k) = kinks.iter().find(|&&k| k < hi && k > lo) {
-            lo = k;
-        }
-        let (mut xs, ws): (Vec<f64>, Vec<f64>) = gl.mapped(lo, hi).unzip();
-        let mut ys: Vec<f64> = xs.iter().map(|&x| p(x)).collect();
-        let p_lo = p(lo);
-        check()?;
-        let w_panel: f64 = ws.iter().zip(&ys).map(|(w, y)| w * y).sum();
-        let e_lo = work + w_panel + film.energy(p_lo);
-        if e_lo >= impact_energy {
-            xs.extend([lo, hi]);
-            ys.extend([p_lo, p_hi]);
-            let poly = PanelPolynomial::new(xs, ys);
-            // degree nodes + 1 <= 2 nodes - 1: the same rule integrates it exactly
-            let g = |x: f64| {
-                work + gl.integrate(|t| poly.eval(t), x, hi) + film.energy(poly.eval(x))
-                    - impact_energy
+        let lo = hi - step;
+        let (int, panels) = integral(&mut ap, lo, hi)?;
+        let p_lo = panels.first().map_or(0.0, |p| p.points[0].1);
+        let g_lo = work + int.value + film.energy(p_lo) - energy;
+        if p_lo > 0.0 && g_lo >= 0.0 {
+            // the closure lies in this step, in its compressive part
+            let (top_c, w_top, mut panels) = if p_hi > 0.0 {
+                (hi, work, panels)
+            } else {
+                // the pressure turns compressive inside the step: split there
+                let z = brent_from(
+                    "where the approach pressure turns compressive",
+                    |x| ap.p(x),
+                    Sample { x: lo, f: p_lo },
+                    Sample { x: hi, f: p_hi },
+                    Tolerance::absolute(1e-3 * tol_d).with_max_iter(200),
+                )?;
+                let (upper, _) = integral(&mut ap, z, hi)?;
+                let (lower, lower_panels) = integral(&mut ap, lo, z)?;
+                work_error += upper.error + lower.error;
+                (z, work + upper.value, lower_panels)
             };
-            let ends = (
-                (lo, e_lo - impact_energy),
-                (hi, work + film.energy(p_hi) - impact_energy),
-            );
-            return Ok(brent_with_values(
-                "end of impact, eq 17",
-                g,
-                ends.0,
-                ends.1,
-                0.0,
-                1e-12 * scale,
-                200,
-            )?);
+            work_error += if top_c == hi { int.error } else { 0.0 };
+            panels.sort_by(|a, b| b.a.total_cmp(&a.a));
+            let (x, panel_top, w_panel_top) =
+                root_on_panels(&panels, top_c, w_top, film, energy, tol_d)?;
+            // verify with exact evaluations: Newton on G(x) = W(x) + film(p(x)) - E_I
+            let mut x = x;
+            let mut correction = f64::INFINITY;
+            let mut p_x = 0.0;
+            let mut slope = 0.0;
+            for _ in 0..6 {
+                p_x = ap.p(x)?;
+                let (w, _) = integral(&mut ap, x, panel_top)?;
+                let g = w_panel_top + w.value + film.energy(p_x) - energy;
+                // dG/dx = -p - (p t_s/E) |dp/dx|; dp/dx from the interpolant
+                let dp = panel_slope(&panels, x);
+                slope = -p_x + film.thickness / film.youngs_modulus * p_x * dp;
+                if !(slope < 0.0) {
+                    slope = -p_x.abs().max(f64::MIN_POSITIVE);
+                }
+                correction = -g / slope;
+                x += correction;
+                if correction.abs() <= 0.1 * tol_d {
+                    break;
+                }
+            }
+            let energy_error = work_error + ap.error_integral(x, top);
+            let error = correction.abs() + energy_error / slope.abs();
+            return Ok(EndOfImpact {
+                d_e: x,
+                error,
+                pressure: p_x,
+            });
         }
-        work += w_panel;
+        work += int.value;
+        work_error += int.error;
         hi = lo;
         p_hi = p_lo;
+        // grow the step geometrically towards the depth the remaining energy needs
+        let remaining = if p_lo > 0.0 {
+            (energy - work) / p_lo
+        } else {
+            f64::INFINITY
+        };
+        step = (2.0 * step).min(remaining.max(0.25 * sigma)).min(64.0 * sigma);
     }
     Err(SwitchError::EnergyNotAbsorbed {
-        energy: impact_energy,
+        energy,
         d: hi,
         absorbed: work,
     })
+}
+
+/// The root of G(x) = W(x) + film(p(x)) - E_I on the interpolants of `panels` (sorted from
+/// the top down, below `top` where the work is `w_top`): returns x and the top of its
+/// panel with the work there.
+fn root_on_panels(
+    panels: &[PanelNodes],
+    top: f64,
+    w_top: f64,
+    film: ImpactFilm,
+    energy: f64,
+    tol_d: f64,
+) -> Result<(f64, f64, f64), SwitchError> {
+    let mut w = w_top;
+    let mut b = top;
+    for p in panels {
+        let fa = p.points[0].1;
+        let g_a = w + p.value + film.energy(fa) - energy;
+        if g_a >= 0.0 {
+            let poly = p.interpolant();
+            let g = |x: f64| {
+                Ok::<_, CoreError>(w + poly.integral(x, p.b) + film.energy(poly.eval(x)) - energy)
+            };
+            let g_b = g(p.b)?;
+            let x = if g_b >= 0.0 {
+                p.b
+            } else {
+                brent_from(
+                    "end of impact, eq 17",
+                    g,
+                    Sample { x: p.a, f: g_a },
+                    Sample { x: p.b, f: g_b },
+                    Tolerance::absolute(1e-3 * tol_d).with_max_iter(200),
+                )?
+            };
+            return Ok((x, p.b, w));
+        }
+        w += p.value;
+        b = p.a;
+    }
+    // rounding put the closure at the very bottom of the step
+    Ok((b, b, w))
+}
+
+/// dp/dx of the interpolant of the panel holding x (x in the step).
+fn panel_slope(panels: &[PanelNodes], x: f64) -> f64 {
+    let Some(p) = panels.iter().find(|p| x >= p.a && x <= p.b) else {
+        return 0.0;
+    };
+    let poly: Interpolant = p.interpolant();
+    let h = 1e-4 * (p.b - p.a);
+    (poly.eval((x + h).min(p.b)) - poly.eval((x - h).max(p.a))) / (2.0 * h).max(f64::MIN_POSITIVE)
 }
 
 /// The unloading branch of one cycle.
@@ -206,61 +313,126 @@ pub fn end_of_impact_with<S: SurfaceLaw>(
 pub struct Unloading {
     /// Magnitude of the most tensile unloading pressure (Pa, >= 0).
     pub pull_out_pressure: f64,
+    /// Its estimated error (Pa).
+    pub pull_out_error: f64,
     /// Separation where it occurs (m).
     pub pull_out_separation: f64,
     /// The curve from d_e to the surface's reach (empty when not asked for).
     pub curve: Vec<PressurePoint>,
 }
 
+/// Samples per decade of the geometric part of the pull-out search grid.
+const SCAN_PER_DECADE: usize = 12;
+
+/// The separations the pull-out search samples after unloading from `d_e`: geometric in
+/// d - d_e from a quarter of the law's finest length scale (so a narrow well just after
+/// d_e cannot fall between samples), united with even steps of a quarter of the
+/// roughness up to the reach. Independent of any curve the caller asks for.
+pub fn pull_out_grid(d_e: f64, reach: f64, scales: LengthScales) -> Vec<f64> {
+    let span = reach - d_e;
+    if !(span > 0.0) {
+        return vec![d_e];
+    }
+    let start = (0.25 * scales.finest).min(0.5 * span);
+    let decades = (span / start).log10().max(1.0);
+    let n_geo = (decades * SCAN_PER_DECADE as f64).ceil() as usize + 1;
+    let n_lin = ((span / (0.25 * scales.roughness)).ceil() as usize).clamp(8, 4000) + 1;
+    let mut grid: Vec<f64> = std::iter::once(d_e)
+        .chain(geomspace(start, span, n_geo).map(|x| d_e + x))
+        .chain(linspace(d_e, reach, n_lin))
+        .collect();
+    grid.sort_by(f64::total_cmp);
+    grid.dedup();
+    grid
+}
+
 /// Unloading from `d_e` for a surface whose `history` already includes the loading to
-/// `d_e`: the curve at `points` separations (uniform from d_e to the reach; none if 0)
-/// and the pull-out pressure, located on a scan and refined by golden section to
-/// 1e-6 of the length scale (the pressure there to about 1e-12).
+/// `d_e`: the pull-out pressure (the most tensile unloading pressure), found on
+/// [`pull_out_grid`] with the surface's scan pressure and refined with its accurate
+/// pressure (best local minima, each to a bracket tolerance whose square is 1e-2 of the
+/// precision's pull-out target: the value error at a smooth minimum is quadratic in the
+/// location error); and the curve at `points` separations evenly from d_e to the
+/// reach (none if 0), which never affects the pull-out.
 pub fn unload<S: SurfaceLaw>(
     surface: &S,
     history: &S::History,
     d_e: f64,
     points: usize,
+    precision: Precision,
 ) -> Result<Unloading, SwitchError> {
-    let top = surface.reach(history)?;
     let path = Path::Retract { from: d_e };
-    let sample = |n: usize| -> Result<Vec<PressurePoint>, SwitchError> {
-        (0..n)
-            .map(|i| {
-                let d = d_e + (top - d_e) * i as f64 / (n - 1) as f64;
-                Ok(PressurePoint {
-                    d,
-                    pressure: surface.pressure(d, history, path)?,
-                })
-            })
-            .collect()
-    };
-    // The search for the minimum never scans coarser than SCAN samples (spacing about a
-    // quarter sigma across an adhesive well about a sigma wide), whatever curve was asked
-    // for; a curve of at least SCAN points serves as the scan itself.
-    const SCAN: usize = 32;
-    let curve = if points == 0 {
-        Vec::new()
-    } else {
-        sample(points.max(2))?
-    };
-    let scan = if curve.len() >= SCAN {
-        curve.clone()
-    } else {
-        sample(SCAN)?
-    };
-    let samples: Vec<(f64, f64)> = scan.iter().map(|q| (q.d, q.pressure)).collect();
-    let (d_min, p_best) = refine_sampled_min(
-        &samples,
-        |x| surface.pressure(x, history, path),
-        // the minimum's value is quadratic in the location error: 1e-6 sigma -> ~1e-12
-        1e-6 * surface.length_scale(),
+    let reach = surface.reach(history, path)?;
+    let scales = surface.length_scales(history)?;
+    let grid = pull_out_grid(d_e, reach, scales);
+    let mut ys = Vec::with_capacity(grid.len());
+    for &d in &grid {
+        ys.push(surface.pressure_scan(d, history, path)?);
+    }
+    let m = refine_minima(
+        "pull-out pressure",
+        |x| Ok::<_, SwitchError>(surface.pressure(x, history, path)?),
+        &grid,
+        &ys,
+        Tolerance::relative((1e-2 * precision.pull_out).sqrt().clamp(1e-8, 1e-2)),
     )?;
+    let (pull, at, error) = if m.value < 0.0 {
+        let e = surface.pressure_estimate(m.x, history, path)?;
+        (-m.value, m.x, e.error)
+    } else {
+        (0.0, reach, 0.0)
+    };
+    let curve = linspace(d_e, reach, if points == 0 { 0 } else { points.max(2) })
+        .map(|d| {
+            Ok(PressurePoint {
+                d,
+                pressure: surface.pressure(d, history, path)?,
+            })
+        })
+        .collect::<Result<Vec<_>, SwitchError>>()?;
     Ok(Unloading {
-        pull_out_pressure: (-p_best).max(0.0),
-        pull_out_separation: d_min,
+        pull_out_pressure: pull,
+        pull_out_error: error,
+        pull_out_separation: at,
         curve,
     })
+}
+
+/// What an impact brings to the contact, and what the spring opposes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Impact {
+    /// Impact energy per unit electrode area E_I (J/m^2).
+    pub energy: f64,
+    /// The film that stores elastic energy (eq 17).
+    pub film: ImpactFilm,
+    /// Fraction phi in (0, 1] of the electrode area that meets the substrate (1: the
+    /// paper's whole electrode). The contacting part absorbs the impact, E_I/phi per unit
+    /// contact area; the adhesion acts on phi of the electrode area.
+    pub contact_area_fraction: f64,
+    /// The spring's restoring pressure at contact K_s d0 (Pa, per unit electrode area).
+    pub restoring_pressure: f64,
+}
+
+impl Impact {
+    fn validated(self) -> Result<Self, SwitchError> {
+        positive("impact_energy", self.energy)?;
+        positive("restoring_pressure", self.restoring_pressure)?;
+        let phi = self.contact_area_fraction;
+        if !(phi.is_finite() && phi > 0.0 && phi <= 1.0) {
+            return Err(CoreError::Invalid {
+                field: "contact_area_fraction",
+                value: phi,
+                allowed: "in (0, 1]",
+            }
+            .into());
+        }
+        Ok(self)
+    }
+
+    /// Pull-out pressure (per contact area) over restoring pressure (per electrode area),
+    /// counting the adhesion on the contacting fraction only: phi p / (K_s d0).
+    pub fn pull_out_ratio(&self, pull_out_pressure: f64) -> f64 {
+        self.contact_area_fraction * pull_out_pressure / self.restoring_pressure
+    }
 }
 
 /// What the cycle runner computes.
@@ -271,14 +443,14 @@ pub struct CycleOptions {
     /// Stop at the first cycle after which accommodation is detected.
     pub until_accommodated: bool,
     /// Accommodation: the next cycle changes the pull-out pressure by less than this
-    /// fraction and d_e by less than this fraction of the surface's length scale.
+    /// fraction and d_e by less than this fraction of the surface's roughness scale.
     pub accommodation_tolerance: f64,
     /// Points on each unloading curve (0: pull-out pressures only).
     pub unloading_points: usize,
     /// Points on the first loading curve (0: none).
     pub loading_points: usize,
-    /// Rule of the d-integral of eq 17.
-    pub energy_rule: EnergyRule,
+    /// Accuracy of d_e and of the pull-out.
+    pub precision: Precision,
 }
 
 impl Default for CycleOptions {
@@ -289,7 +461,7 @@ impl Default for CycleOptions {
             accommodation_tolerance: 1e-3,
             unloading_points: 200,
             loading_points: 200,
-            energy_rule: EnergyRule::DEFAULT,
+            precision: Precision::default(),
         }
     }
 }
@@ -299,12 +471,24 @@ impl Default for CycleOptions {
 pub struct Cycle<H> {
     /// 1-based cycle number.
     pub cycle: usize,
-    /// End-of-impact separation (m).
-    pub d_e: f64,
+    /// End of impact.
+    pub end: EndOfImpact,
     /// The history after this cycle's loading.
     #[serde(skip)]
     pub history: H,
+    /// Unloading and pull-out.
     pub unloading: Unloading,
+    /// phi pull-out / (K_s d0).
+    pub pull_out_ratio: f64,
+    /// The spring cannot open the switch after this cycle: ratio > 1.
+    pub sticks: bool,
+}
+
+impl<H> Cycle<H> {
+    /// End-of-impact separation d_e (m).
+    pub fn d_e(&self) -> f64 {
+        self.end.d_e
+    }
 }
 
 /// The cycles and what was learned from them.
@@ -312,59 +496,69 @@ pub struct Cycle<H> {
 pub struct CycleRun<H> {
     /// The first (virgin) loading curve, from d_e of cycle 1 to the reach.
     pub loading: Vec<PressurePoint>,
+    /// Every cycle run.
     pub cycles: Vec<Cycle<H>>,
     /// The cycle after which nothing changes any more (within the tolerance).
     pub accommodated_after: Option<usize>,
+    /// The largest pull-out pressure of all cycles (Pa, per contact area).
+    pub largest_pull_out: f64,
+    /// The largest phi pull-out / (K_s d0).
+    pub pull_out_ratio: f64,
+    /// The first cycle that sticks.
+    pub first_sticking_cycle: Option<usize>,
+    /// Some cycle sticks.
+    pub stiction: bool,
 }
 
 /// Runs impact cycles on `surface` from `history`: each cycle finds d_e from eq 17 with
-/// the history so far, loads the history to d_e, and unloads.
+/// the history so far (energy E_I/phi per contact area), loads the history to d_e, unloads,
+/// and judges the pull-out against the spring. `on_cycle` sees each cycle as it ends
+/// (progress reporting).
 pub fn run_cycles<S: SurfaceLaw>(
     surface: &S,
     history: S::History,
-    impact_energy: f64,
-    film: ImpactFilm,
+    impact: Impact,
     options: CycleOptions,
+    on_cycle: &mut dyn FnMut(&Cycle<S::History>),
 ) -> Result<CycleRun<S::History>, SwitchError> {
+    let impact = impact.validated()?;
     if options.cycles == 0 {
-        return Err(SwitchError::Invalid {
+        return Err(CoreError::Invalid {
             field: "cycles",
             value: 0.0,
-            allowed: "at least 1".into(),
-        });
+            allowed: "at least 1",
+        }
+        .into());
     }
-    let tol = options.accommodation_tolerance;
-    if !(tol.is_finite() && tol > 0.0) {
-        return Err(SwitchError::Invalid {
-            field: "accommodation_tolerance",
-            value: tol,
-            allowed: "finite and > 0".into(),
-        });
-    }
-    let scale = surface.length_scale();
+    let tol = positive("accommodation_tolerance", options.accommodation_tolerance)?;
+    let energy = impact.energy / impact.contact_area_fraction;
     let mut hist = history;
     let mut cycles: Vec<Cycle<S::History>> = Vec::new();
     let mut accommodated_after = None;
     let mut loading = Vec::new();
     for k in 1..=options.cycles {
-        let d_e = end_of_impact_with(surface, &hist, impact_energy, film, options.energy_rule)?;
-        let first_history = hist.clone();
-        let new_hist = surface.load(&hist, d_e);
-        let unloading = unload(surface, &new_hist, d_e, options.unloading_points)?;
+        let scale = surface.length_scales(&hist)?.roughness;
+        let end = end_of_impact(surface, &hist, energy, impact.film, options.precision)?;
+        let new_hist = surface.load(&hist, end.d_e);
+        let unloading = unload(
+            surface,
+            &new_hist,
+            end.d_e,
+            options.unloading_points,
+            options.precision,
+        )?;
         if k == 1 && options.loading_points > 0 {
-            let top = surface.reach(&first_history)?;
-            let n = options.loading_points.max(2);
-            for i in 0..n {
-                let d = d_e + (top - d_e) * i as f64 / (n - 1) as f64;
+            let top = surface.reach(&hist, Path::Approach)?;
+            for d in linspace(end.d_e, top, options.loading_points.max(2)) {
                 loading.push(PressurePoint {
                     d,
-                    pressure: surface.pressure(d, &first_history, Path::Approach)?,
+                    pressure: surface.pressure(d, &hist, Path::Approach)?,
                 });
             }
         }
         if let Some(prev) = cycles.last() {
             let dp = (unloading.pull_out_pressure - prev.unloading.pull_out_pressure).abs();
-            let dd = (d_e - prev.d_e).abs();
+            let dd = (end.d_e - prev.end.d_e).abs();
             if accommodated_after.is_none()
                 && dp <= tol * unloading.pull_out_pressure.abs().max(f64::MIN_POSITIVE)
                 && dd <= tol * scale
@@ -372,20 +566,69 @@ pub fn run_cycles<S: SurfaceLaw>(
                 accommodated_after = Some(prev.cycle);
             }
         }
+        let ratio = impact.pull_out_ratio(unloading.pull_out_pressure);
         hist = new_hist.clone();
-        cycles.push(Cycle {
+        let cycle = Cycle {
             cycle: k,
-            d_e,
+            end,
             history: new_hist,
             unloading,
-        });
+            pull_out_ratio: ratio,
+            sticks: ratio > 1.0,
+        };
+        on_cycle(&cycle);
+        cycles.push(cycle);
         if options.until_accommodated && accommodated_after.is_some() {
             break;
         }
     }
+    let largest_pull_out = cycles
+        .iter()
+        .map(|c| c.unloading.pull_out_pressure)
+        .fold(0.0, f64::max);
+    let first_sticking_cycle = cycles.iter().find(|c| c.sticks).map(|c| c.cycle);
     Ok(CycleRun {
         loading,
-        cycles,
+        pull_out_ratio: impact.pull_out_ratio(largest_pull_out),
+        largest_pull_out,
+        stiction: first_sticking_cycle.is_some(),
+        first_sticking_cycle,
         accommodated_after,
+        cycles,
     })
+}
+
+/// The residual of eq 17 at `d`, G(d) = integral_d^inf p_L + p_L(d)^2 t_s/(2E) - E_I
+/// (J/m^2), computed independently of [`end_of_impact`] (fixed tight quadrature on
+/// quarter-sigma panels): a check of the energy balance for tests and tools.
+pub fn eq17_residual<S: SurfaceLaw>(
+    surface: &S,
+    history: &S::History,
+    d: f64,
+    impact_energy: f64,
+    film: ImpactFilm,
+) -> Result<f64, SwitchError> {
+    let top = surface.reach(history, Path::Approach)?;
+    let rule = AdaptiveRule::new(6)?;
+    let quad = QuadTolerance {
+        rel: 1e-13,
+        abs: 0.0,
+        max_width: 0.25 * surface.length_scales(history)?.roughness,
+        max_panels: 100_000,
+    };
+    let mut breaks = vec![d];
+    let mut kinks = surface.kinks(history);
+    kinks.sort_by(f64::total_cmp);
+    breaks.extend(kinks.into_iter().filter(|&k| k > d && k < top));
+    breaks.push(top);
+    let (w, _) = integrate_panels(
+        "eq 17 residual",
+        |x| Ok::<_, SwitchError>(surface.pressure(x, history, Path::Approach)?),
+        &breaks,
+        false,
+        &rule,
+        quad,
+    )?;
+    let p = surface.pressure(d, history, Path::Approach)?;
+    Ok(w.value + film.energy(p) - impact_energy)
 }

@@ -4,32 +4,20 @@ use thiserror::Error;
 /// Errors of the `switch-1d` crate.
 #[derive(Debug, Error)]
 pub enum SwitchError {
-    /// A parameter outside its domain.
-    #[error("invalid {field} = {value}: must be {allowed}")]
-    Invalid {
-        field: &'static str,
-        value: f64,
-        allowed: String,
-    },
+    /// A parameter outside its domain, or a root/minimum/quadrature failure.
+    #[error("switch: {0}")]
+    Core(#[from] CoreError),
     /// The surface cannot absorb the impact energy within the separations it covers.
-    #[error("the surface cannot absorb impact energy {energy} J/m^2: at separation {d:e} m it has absorbed only {absorbed} J/m^2")]
-    EnergyNotAbsorbed { energy: f64, d: f64, absorbed: f64 },
+    #[error("the surface cannot absorb impact energy {energy:e} J/m^2: at separation {d:e} m it has absorbed only {absorbed:e} J/m^2")]
+    EnergyNotAbsorbed {
+        /// The impact energy per unit contact area (J/m^2).
+        energy: f64,
+        /// The deepest separation searched (m).
+        d: f64,
+        /// The energy absorbed there (J/m^2).
+        absorbed: f64,
+    },
     /// The surface law failed.
     #[error("surface law: {0}")]
     Surface(#[from] LawError),
-    /// A root or minimum search failed.
-    #[error("switch solver: {0}")]
-    Numeric(#[from] CoreError),
-}
-
-pub(crate) fn positive(field: &'static str, v: f64) -> Result<f64, SwitchError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(SwitchError::Invalid {
-            field,
-            value: v,
-            allowed: "finite and > 0".into(),
-        })
-    }
 }
