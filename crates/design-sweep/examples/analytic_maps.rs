@@ -30,7 +30,11 @@ fn eval(values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let out = PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "out/design-demo".into()));
+    let out = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "out/design-demo".into()),
+    );
     std::fs::create_dir_all(&out)?;
     let labels = Labels::new()
         .with_unit("switch.k_s", "Pa/m")
@@ -41,7 +45,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ("map_1d_lin", vec!["switch.k_s=500:3000:lin:26"]),
         (
             "map_2d",
-            vec!["switch.k_s=1e2:1e5:log:31", "surface.sigma_s=1e-9:9e-9:lin:17"],
+            vec![
+                "switch.k_s=1e2:1e5:log:31",
+                "surface.sigma_s=1e-9:9e-9:lin:17",
+            ],
         ),
     ] {
         let request = MapRequest {

@@ -119,17 +119,20 @@ pub(crate) fn contour_plotted(map: &Map) -> Vec<Vec<(f64, f64)>> {
     for i in 0..nx.saturating_sub(1) {
         for j in 0..ny.saturating_sub(1) {
             // corners counter-clockwise: bl, br, tr, tl (x = first axis, y = second)
-            let c = [node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)];
-            let Some(l) = c
-                .iter()
-                .map(|&k| lv[k])
-                .collect::<Option<Vec<f64>>>()
-            else {
+            let c = [
+                node(i, j),
+                node(i + 1, j),
+                node(i + 1, j + 1),
+                node(i, j + 1),
+            ];
+            let Some(l) = c.iter().map(|&k| lv[k]).collect::<Option<Vec<f64>>>() else {
                 continue;
             };
             let inside: Vec<bool> = l.iter().map(|&v| v >= 0.0).collect();
             // edge e connects corner e and corner e+1
-            let crossed: Vec<usize> = (0..4).filter(|&e| inside[e] != inside[(e + 1) % 4]).collect();
+            let crossed: Vec<usize> = (0..4)
+                .filter(|&e| inside[e] != inside[(e + 1) % 4])
+                .collect();
             let e = |k: usize| edge(c[k], c[(k + 1) % 4]);
             match crossed.len() {
                 2 => segments.push([e(crossed[0]), e(crossed[1])]),

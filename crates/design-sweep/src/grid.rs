@@ -118,7 +118,9 @@ impl Axis {
             return Err(err(format!("TO = {to} must be finite")));
         }
         if from == to {
-            return Err(err(format!("FROM and TO are both {from}: they must differ")));
+            return Err(err(format!(
+                "FROM and TO are both {from}: they must differ"
+            )));
         }
         if spacing == Spacing::Log && !(from > 0.0 && to > 0.0) {
             return Err(err(format!(

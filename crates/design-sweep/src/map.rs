@@ -194,7 +194,9 @@ impl Map {
             row.push(p.status.word().to_owned());
             w.write_record(&row).map_err(csv_err)?;
         }
-        let bytes = w.into_inner().map_err(|e| DesignError::Csv(e.to_string()))?;
+        let bytes = w
+            .into_inner()
+            .map_err(|e| DesignError::Csv(e.to_string()))?;
         String::from_utf8(bytes).map_err(|e| DesignError::Csv(e.to_string()))
     }
 
@@ -210,7 +212,8 @@ impl Map {
     /// format, valid grid and shard, points ascending, belonging to the shard, with the
     /// grid's values.
     pub fn from_json(text: &str) -> Result<Map, DesignError> {
-        let m: MapIn = serde_json::from_str(text).map_err(|e| DesignError::MapJson(e.to_string()))?;
+        let m: MapIn =
+            serde_json::from_str(text).map_err(|e| DesignError::MapJson(e.to_string()))?;
         let bad = |m: String| DesignError::MapJson(m);
         if m.format != MAP_FORMAT || m.version != MAP_VERSION {
             return Err(bad(format!(
@@ -387,7 +390,8 @@ where
         })
     };
     let n = part(first_label, first)?.n;
-    let mut owner: Vec<Option<&str>> = vec![None; n];
+    // parts seen so far (a map: N comes from a file and may be anything)
+    let mut owner: BTreeMap<usize, &str> = BTreeMap::new();
     for (label, m) in &shards {
         let s = part(label, m)?;
         if s.n != n {
@@ -424,10 +428,9 @@ where
                 ),
             ));
         }
-        if let Some(other) = owner[s.k - 1] {
+        if let Some(other) = owner.insert(s.k, label) {
             return Err(refuse(label, format!("part {s} is also in {other}")));
         }
-        owner[s.k - 1] = Some(label);
         let expected: Vec<usize> = s.indices(m.grid.len()).collect();
         let got: Vec<usize> = m.points.iter().map(|p| p.index).collect();
         if got != expected {
@@ -441,20 +444,28 @@ where
             ));
         }
     }
-    let missing: Vec<String> = owner
-        .iter()
-        .enumerate()
-        .filter(|(_, o)| o.is_none())
-        .map(|(k, _)| format!("{}/{n}", k + 1))
-        .collect();
-    if !missing.is_empty() {
+    if owner.len() < n {
+        let missing: Vec<String> = (1..=n)
+            .filter(|k| !owner.contains_key(k))
+            .take(20)
+            .map(|k| format!("{k}/{n}"))
+            .collect();
+        let more = n - owner.len() - missing.len();
         return Err(refuse(
             &shards
                 .iter()
                 .map(|(l, _)| l.as_str())
                 .collect::<Vec<_>>()
                 .join(", "),
-            format!("missing part(s) {}", missing.join(", ")),
+            format!(
+                "missing part(s) {}{}",
+                missing.join(", "),
+                if more > 0 {
+                    format!(" and {more} more")
+                } else {
+                    String::new()
+                }
+            ),
         ));
     }
     let (scene, grid, accuracy) = (

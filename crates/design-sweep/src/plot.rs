@@ -151,7 +151,11 @@ fn lin_ticks(lo: f64, hi: f64, max_n: usize) -> (Vec<f64>, f64) {
         .map(|m| m * mag)
         .find(|s| *s >= raw)
         .unwrap_or(10.0 * mag);
-    let (k0, k1) = ((lo / step).ceil() as i64, (hi / step).floor() as i64);
+    // a tick on an end survives rounding (1.2 / 0.2 = 5.999...)
+    let (k0, k1) = (
+        (lo / step - 1e-9).ceil() as i64,
+        (hi / step + 1e-9).floor() as i64,
+    );
     ((k0..=k1).map(|k| k as f64 * step).collect(), step)
 }
 
@@ -253,7 +257,11 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
         )
     } else {
         let top = (1.15 * rmax).max(1.2);
-        (Scale::new(-0.05 * top, top, false), 0.0, Box::new(|r: f64| r))
+        (
+            Scale::new(-0.05 * top, top, false),
+            0.0,
+            Box::new(|r: f64| r),
+        )
     };
 
     let title = labels.title.clone().unwrap_or_else(|| {
@@ -485,7 +493,11 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
     }
     chart.draw_series(cells).map_err(plot_err)?;
     chart
-        .draw_series(crosses.iter().map(|&c| Cross::new(c, 6, BLACK.stroke_width(2))))
+        .draw_series(
+            crosses
+                .iter()
+                .map(|&c| Cross::new(c, 6, BLACK.stroke_width(2))),
+        )
         .map_err(plot_err)?;
     for line in contour_plotted(map) {
         chart
@@ -495,19 +507,16 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
             )))
             .map_err(plot_err)?;
     }
-    let mut legend = String::from("black line: ratio = 1 (stiction boundary); red sticks, blue free");
+    let mut legend =
+        String::from("black line: ratio = 1 (stiction boundary); red sticks, blue free");
     if any_no_close {
         legend.push_str("; grey: does not close");
     }
     if any_failed {
         legend.push_str("; x: failed or out of domain");
     }
-    main.draw_text(
-        &legend,
-        &(FONT, 14).into_text_style(&main),
-        (95, 720 - 22),
-    )
-    .map_err(plot_err)?;
+    main.draw_text(&legend, &(FONT, 14).into_text_style(&main), (95, 720 - 22))
+        .map_err(plot_err)?;
 
     // colour bar
     let bs = Scale::new(-m, m, false);
@@ -544,4 +553,47 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
     )))
     .map_err(plot_err)?;
     root.present().map_err(plot_err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short_and_exact_enough() {
+        assert_eq!(fmt_sig(1000.0000000000001, 1), "1000");
+        assert_eq!(fmt_sig(0.30000000000000004, 1), "0.3");
+        assert_eq!(fmt_sig(10f64.powf(-9.0), 1), "1e-9");
+        assert_eq!(fmt_sig(1e-9 * (1.0 + 2.0 * f64::EPSILON), 1), "1e-9");
+        assert_eq!(fmt_sig(2.5e-9, 2), "2.5e-9");
+        assert_eq!(fmt_sig(-1.25e6, 3), "-1.25e6");
+        assert_eq!(fmt_sig(0.0, 3), "0");
+        assert_eq!(fmt_sig(1414.2135, 6), "1414.21");
+    }
+
+    #[test]
+    fn every_axis_gets_ticks_inside_it() {
+        for (lo, hi) in [
+            (2f64.log10(), 5f64.log10()),
+            (-9.3, -8.9),
+            (0.2, 7.9),
+            (-12.0, 12.0),
+        ] {
+            let (bold, _, _) = log_ticks(lo, hi);
+            assert!(bold.len() >= 2, "{lo}..{hi}: {bold:?}");
+            assert!(bold.len() <= 13, "{lo}..{hi}: {bold:?}");
+            assert!(bold.iter().all(|t| (lo - 1e-12..=hi + 1e-12).contains(t)));
+        }
+        let (t, step) = lin_ticks(-0.05, 1.2, 8);
+        assert_eq!(step, 0.2);
+        assert_eq!(t.len(), 7);
+        assert_eq!(digits_for(&t, step), 2); // "1.2"
+    }
+
+    #[test]
+    fn the_colour_map_is_white_at_ratio_one() {
+        assert_eq!(diverging(0.0), RGBColor(247, 247, 247));
+        assert_eq!(diverging(1.0), STICK);
+        assert_eq!(diverging(-3.0), FREE);
+    }
 }

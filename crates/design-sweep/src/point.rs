@@ -175,9 +175,9 @@ where
 pub(crate) fn check_field(field: &str) -> Result<(), String> {
     let ok = !field.is_empty()
         && field.contains('.')
-        && field.split('.').all(|p| {
-            !p.is_empty() && p.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-        });
+        && field
+            .split('.')
+            .all(|p| !p.is_empty() && p.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'));
     if ok {
         Ok(())
     } else {

@@ -136,7 +136,11 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
         &mut s,
         "map",
         if g.dim() == 1 {
-            format!("1-D, {} points (accuracy {})", sum.grid_points, map.accuracy())
+            format!(
+                "1-D, {} points (accuracy {})",
+                sum.grid_points,
+                map.accuracy()
+            )
         } else {
             format!(
                 "2-D, {} x {} = {} points (accuracy {})",
@@ -188,17 +192,29 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
         format!("{} of {} closing points", sum.sticking, sum.ok),
     );
     if let Some((i, r)) = sum.min_ratio {
-        row(&mut s, "smallest ratio", format!("{} at {}", fmt_sig(r, 4), at(i)));
+        row(
+            &mut s,
+            "smallest ratio",
+            format!("{} at {}", fmt_sig(r, 4), at(i)),
+        );
     }
     if let Some((i, r)) = sum.max_ratio {
-        row(&mut s, "largest ratio", format!("{} at {}", fmt_sig(r, 4), at(i)));
+        row(
+            &mut s,
+            "largest ratio",
+            format!("{} at {}", fmt_sig(r, 4), at(i)),
+        );
     }
     if g.dim() == 1 {
         let a = &g.axes()[0];
         let unit = labels.unit(&a.field);
         let b = map.boundary_1d();
         if b.is_empty() {
-            row(&mut s, "boundary", "no crossing of ratio = 1 on the grid".into());
+            row(
+                &mut s,
+                "boundary",
+                "no crossing of ratio = 1 on the grid".into(),
+            );
         }
         for p in b {
             row(

@@ -219,7 +219,9 @@ where
         )));
     }
     if from == to {
-        return Err(bad(format!("--from and --to are both {from}: they must differ")));
+        return Err(bad(format!(
+            "--from and --to are both {from}: they must differ"
+        )));
     }
     let ThresholdOptions {
         tolerance,

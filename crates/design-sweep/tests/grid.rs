@@ -27,7 +27,11 @@ fn parses_lin_and_log_axes() {
     assert!((b.values[1] / 1.5e-9 - 1.0).abs() < 1e-15);
     // whole-number grids come out exact
     let c = Axis::parse("switch.k_s=100:2000:lin:20").unwrap();
-    assert!(c.values.iter().enumerate().all(|(i, &v)| v == 100.0 * (i + 1) as f64));
+    assert!(c
+        .values
+        .iter()
+        .enumerate()
+        .all(|(i, &v)| v == 100.0 * (i + 1) as f64));
 }
 
 #[test]
@@ -54,7 +58,10 @@ fn one_point_axis_is_from_only() {
 #[test]
 fn axis_errors_name_the_option_and_the_value() {
     let e = axis_err("switch.k_s=1:1:lin:5");
-    assert!(e.contains("switch.k_s=1:1:lin:5") && e.contains("both 1"), "{e}");
+    assert!(
+        e.contains("switch.k_s=1:1:lin:5") && e.contains("both 1"),
+        "{e}"
+    );
     let e = axis_err("switch.k_s=0:10:log:5");
     assert!(e.contains("FROM = 0") && e.contains("log"), "{e}");
     let e = axis_err("switch.k_s=-1:10:log:5");
@@ -106,11 +113,20 @@ fn grid_refuses_bad_dimensions() {
     let none: [&str; 0] = [];
     assert!(matches!(Grid::parse(&none), Err(DesignError::Grid(_))));
     let three = ["a.x=1:2:lin:2", "a.y=1:2:lin:2", "a.z=1:2:lin:2"];
-    assert!(Grid::parse(&three).unwrap_err().to_string().contains("1-D or 2-D"));
+    assert!(Grid::parse(&three)
+        .unwrap_err()
+        .to_string()
+        .contains("1-D or 2-D"));
     let twice = ["a.x=1:2:lin:2", "a.x=3:4:lin:2"];
-    assert!(Grid::parse(&twice).unwrap_err().to_string().contains("a.x is varied twice"));
+    assert!(Grid::parse(&twice)
+        .unwrap_err()
+        .to_string()
+        .contains("a.x is varied twice"));
     let huge = ["a.x=1:2:lin:100000", "a.y=1:2:lin:100"];
-    assert!(Grid::parse(&huge).unwrap_err().to_string().contains("at most"));
+    assert!(Grid::parse(&huge)
+        .unwrap_err()
+        .to_string()
+        .contains("at most"));
 }
 
 #[test]
@@ -142,6 +158,9 @@ fn shard_errors_name_the_option() {
         ("1/-2", "N `-2`"),
     ] {
         let e = Shard::parse(opt).unwrap_err().to_string();
-        assert!(e.contains(&format!("`{opt}`")) && e.contains(want), "{opt}: {e}");
+        assert!(
+            e.contains(&format!("`{opt}`")) && e.contains(want),
+            "{opt}: {e}"
+        );
     }
 }

@@ -23,7 +23,10 @@ fn request(specs: &[&str], shard: Option<Shard>) -> MapRequest {
     }
 }
 
-const GRID_2D: [&str; 2] = ["switch.k_s=3e2:3e4:log:13", "surface.sigma_s=1e-9:9e-9:lin:7"];
+const GRID_2D: [&str; 2] = [
+    "switch.k_s=3e2:3e4:log:13",
+    "surface.sigma_s=1e-9:9e-9:lin:7",
+];
 
 fn run(specs: &[&str], shard: Option<Shard>) -> Map {
     run_map(request(specs, shard), product, |_, _| {})
@@ -36,7 +39,11 @@ fn labels() -> Labels {
 }
 
 fn files(m: &Map) -> (String, String, String) {
-    (m.to_csv().unwrap(), m.to_json(), m.to_svg(&labels()).unwrap())
+    (
+        m.to_csv().unwrap(),
+        m.to_json(),
+        m.to_svg(&labels()).unwrap(),
+    )
 }
 
 /// Shards as the CLI would have them: written as JSON and read back.
@@ -119,7 +126,9 @@ fn failing_points_get_a_status_and_the_map_completes() {
     };
     assert!(matches!(status(100.0), Status::OutOfDomain(m) if m.contains("below 150")));
     assert!(matches!(status(500.0), Status::Failed(m) if m.contains("did not converge")));
-    assert!(matches!(status(900.0), Status::Failed(m) if m.contains("panicked") && m.contains("a bug")));
+    assert!(
+        matches!(status(900.0), Status::Failed(m) if m.contains("panicked") && m.contains("a bug"))
+    );
     assert_eq!(*status(1900.0), Status::DoesNotClose);
     assert_eq!(*status(1000.0), Status::Ok);
     let s = map.summary();
@@ -175,14 +184,21 @@ fn csv_header_and_rows_are_exact() {
     assert_eq!(cells[0], "3e2");
     assert_eq!(cells[1], "1e-9");
     let r: f64 = cells[2].parse().unwrap();
-    assert_eq!(r, map.points()[0].design.unwrap().pull_out_ratio, "round trip");
+    assert_eq!(
+        r,
+        map.points()[0].design.unwrap().pull_out_ratio,
+        "round trip"
+    );
     assert_eq!(&cells[5..], ["3", "1", "true", "true", "ok"]);
     // every number parses back bit for bit
     for (row, p) in rows.iter().zip(map.points()) {
         let c: Vec<&str> = row.split(',').collect();
         assert_eq!(c[0].parse::<f64>().unwrap(), p.values[0]);
         assert_eq!(c[1].parse::<f64>().unwrap(), p.values[1]);
-        assert_eq!(c[3].parse::<f64>().unwrap(), p.design.unwrap().largest_pull_out_pa);
+        assert_eq!(
+            c[3].parse::<f64>().unwrap(),
+            p.design.unwrap().largest_pull_out_pa
+        );
     }
 }
 
@@ -199,7 +215,10 @@ fn json_names_the_grid_and_scene() {
     assert_eq!(a["values"].as_array().unwrap().len(), 13);
     let p = &v["points"][8];
     assert_eq!(p["index"], 8);
-    assert_eq!(p["values"]["switch.k_s"].as_f64(), Some(map.grid().values(8)[0]));
+    assert_eq!(
+        p["values"]["switch.k_s"].as_f64(),
+        Some(map.grid().values(8)[0])
+    );
     assert_eq!(p["status"], "ok");
     assert!(p.get("detail").is_none());
     assert_eq!(Map::from_json(&map.to_json()).unwrap(), map);
@@ -226,7 +245,10 @@ fn merge_refuses_mismatched_missing_or_duplicate_shards() {
     let dup = ("maps/copy".to_string(), parts[0].1.clone());
     parts.push(dup);
     let e = merge_err(parts);
-    assert!(e.contains("maps/copy") && e.contains("also in maps/part-1"), "{e}");
+    assert!(
+        e.contains("maps/copy") && e.contains("also in maps/part-1"),
+        "{e}"
+    );
 
     // different scene
     let mut parts = shards(specs, 2);
@@ -238,7 +260,10 @@ fn merge_refuses_mismatched_missing_or_duplicate_shards() {
 
     // different grid
     let mut parts = shards(specs, 2);
-    let other = ["switch.k_s=3e2:3e4:log:13", "surface.sigma_s=1e-9:9e-9:lin:8"];
+    let other = [
+        "switch.k_s=3e2:3e4:log:13",
+        "surface.sigma_s=1e-9:9e-9:lin:8",
+    ];
     parts[1].1 = run(&other, Some(Shard::new(2, 2).unwrap()));
     let e = merge_err(parts);
     assert!(e.contains("maps/part-2") && e.contains("grid"), "{e}");
@@ -261,6 +286,14 @@ fn merge_refuses_mismatched_missing_or_duplicate_shards() {
     let e = merge_err(vec![("maps/all".into(), run(specs, None))]);
     assert!(e.contains("maps/all") && e.contains("unsharded"), "{e}");
 
+    // a huge N is reported, not enumerated
+    let big = run(specs, Some(Shard::new(1, 1_000_000_000_000).unwrap()));
+    let e = merge_err(vec![("maps/big".into(), big)]);
+    assert!(
+        e.contains("missing part(s) 2/1000000000000, ") && e.contains("and 999999999979 more"),
+        "{e}"
+    );
+
     // nothing
     assert!(merge(Vec::new()).is_err());
 }
@@ -280,9 +313,17 @@ fn from_json_refuses_altered_maps() {
 fn a_shard_with_more_parts_than_points_is_empty_and_merges() {
     let specs = ["switch.k_s=1e2:1e4:log:3"];
     let parts: Vec<(String, Map)> = (1..=5)
-        .map(|k| (format!("p{k}"), run(&specs, Some(Shard::new(k, 5).unwrap()))))
+        .map(|k| {
+            (
+                format!("p{k}"),
+                run(&specs, Some(Shard::new(k, 5).unwrap())),
+            )
+        })
         .collect();
     assert!(parts[4].1.points().is_empty());
+    roxmltree::Document::parse(&parts[4].1.to_svg(&labels()).unwrap()).unwrap();
+    let empty_2d = run(&GRID_2D, Some(Shard::new(99, 99).unwrap()));
+    roxmltree::Document::parse(&empty_2d.to_svg(&labels()).unwrap()).unwrap();
     let merged = merge(parts).unwrap();
     assert_eq!(merged.to_json(), run(&specs, None).to_json());
 }

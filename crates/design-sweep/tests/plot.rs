@@ -35,7 +35,12 @@ fn polylines(svg: &str, width: &str) -> Vec<usize> {
     assert_eq!(doc.root_element().tag_name().name(), "svg");
     doc.descendants()
         .filter(|n| n.has_tag_name("polyline") && n.attribute("stroke-width") == Some(width))
-        .map(|n| n.attribute("points").unwrap_or("").split_whitespace().count())
+        .map(|n| {
+            n.attribute("points")
+                .unwrap_or("")
+                .split_whitespace()
+                .count()
+        })
         .collect()
 }
 
@@ -43,21 +48,31 @@ fn polylines(svg: &str, width: &str) -> Vec<usize> {
 fn contour_is_exact_where_log_ratio_is_linear_in_the_plotted_coordinates() {
     // both axes log: log10 ratio is linear in (log10 x, log10 y), so every vertex is exact
     let map = run(
-        &["switch.k_s=3e2:3e4:log:13", "surface.sigma_s=1e-9:9e-8:log:9"],
+        &[
+            "switch.k_s=3e2:3e4:log:13",
+            "surface.sigma_s=1e-9:9e-8:log:9",
+        ],
         product,
     );
     let lines = map.boundary_2d();
     assert_eq!(lines.len(), 1);
     assert!(lines[0].len() >= 8, "{}", lines[0].len());
     for &(x, y) in &lines[0] {
-        assert!(ratio(x, y).log10().abs() < 1e-10, "({x}, {y}): ratio {}", ratio(x, y));
+        assert!(
+            ratio(x, y).log10().abs() < 1e-10,
+            "({x}, {y}): ratio {}",
+            ratio(x, y)
+        );
     }
 }
 
 #[test]
 fn contour_follows_the_known_boundary_on_a_lin_axis() {
     let map = run(
-        &["switch.k_s=3e2:3e4:log:13", "surface.sigma_s=1e-9:9e-9:lin:7"],
+        &[
+            "switch.k_s=3e2:3e4:log:13",
+            "surface.sigma_s=1e-9:9e-9:lin:7",
+        ],
         product,
     );
     let lines = map.boundary_2d();
@@ -69,7 +84,9 @@ fn contour_follows_the_known_boundary_on_a_lin_axis() {
     }
     // it runs from the bottom to the top of the grid
     let ys: Vec<f64> = line.iter().map(|p| p.1).collect();
-    let (lo, hi) = ys.iter().fold((f64::MAX, f64::MIN), |(a, b), &y| (a.min(y), b.max(y)));
+    let (lo, hi) = ys
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &y| (a.min(y), b.max(y)));
     assert_eq!((lo, hi), (1e-9, 9e-9));
 
     let svg = map.to_svg(&labels()).unwrap();
@@ -86,7 +103,10 @@ fn contour_follows_the_known_boundary_on_a_lin_axis() {
 #[test]
 fn a_map_without_a_boundary_has_no_contour() {
     let map = run(
-        &["switch.k_s=1e4:3e4:log:5", "surface.sigma_s=1e-9:2e-9:lin:3"],
+        &[
+            "switch.k_s=1e4:3e4:log:5",
+            "surface.sigma_s=1e-9:2e-9:lin:3",
+        ],
         product,
     );
     assert!(map.boundary_2d().is_empty());
@@ -99,7 +119,10 @@ fn failed_and_non_closing_points_are_drawn_not_dropped() {
     let map = run(&["switch.k_s=100:2000:lin:20"], flaky);
     let svg = map.to_svg(&labels()).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();
-    let circles = doc.descendants().filter(|n| n.has_tag_name("circle")).count();
+    let circles = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("circle"))
+        .count();
     // 15 closing points, 2 that do not close at the floor, 1 legend marker
     assert_eq!(circles, 15 + 2 + 1, "{svg}");
     assert!(svg.contains("does not close (ratio 0)"));
@@ -107,7 +130,10 @@ fn failed_and_non_closing_points_are_drawn_not_dropped() {
     assert!(svg.contains("switch.k_s [Pa/m]"));
     // a 2-D map with failures draws them as crossed cells
     let map2 = run(
-        &["switch.k_s=100:2000:lin:20", "surface.sigma_s=1e-9:2e-9:lin:3"],
+        &[
+            "switch.k_s=100:2000:lin:20",
+            "surface.sigma_s=1e-9:2e-9:lin:3",
+        ],
         |v: &[(&str, f64)]| flaky(&v[..1]),
     );
     let svg2 = map2.to_svg(&labels()).unwrap();

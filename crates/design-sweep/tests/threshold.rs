@@ -69,7 +69,9 @@ fn no_crossing_is_an_answer_not_an_error() {
     assert!(v["ratio_at_from"].as_f64().unwrap() < 1.0);
     let t = threshold("switch.k_s", 10.0, 100.0, power(3e3, 2.0), &opts(1e-6)).unwrap();
     assert_eq!(t.free_side, FreeSide::Nowhere);
-    assert!(threshold_table(&t, &Labels::new()).contains("sticks (ratio >= 1) over the whole range"));
+    assert!(
+        threshold_table(&t, &Labels::new()).contains("sticks (ratio >= 1) over the whole range")
+    );
 }
 
 #[test]
@@ -84,7 +86,11 @@ fn reports_two_crossings() {
     let r2 = 2f64.sqrt();
     let want = [1e3 * 10f64.powf(-r2), 1e3 * 10f64.powf(r2)];
     for (c, w) in t.crossings.iter().zip(want) {
-        assert!((c.critical_value / w - 1.0).abs() < 1e-8, "{} vs {w}", c.critical_value);
+        assert!(
+            (c.critical_value / w - 1.0).abs() < 1e-8,
+            "{} vs {w}",
+            c.critical_value
+        );
     }
     assert_eq!(t.crossings[0].free_side, FreeSide::Above);
     assert_eq!(t.crossings[1].free_side, FreeSide::Below);
@@ -106,7 +112,10 @@ fn reports_two_crossings() {
     assert_eq!(v["crossings"].as_array().unwrap().len(), 2);
     assert!(!t.to_json().contains("null"));
     let table = threshold_table(&t, &Labels::new().with_unit("switch.k_s", "Pa/m"));
-    assert!(table.contains("crossings (2)") && table.contains("Pa/m"), "{table}");
+    assert!(
+        table.contains("crossings (2)") && table.contains("Pa/m"),
+        "{table}"
+    );
 }
 
 #[test]
@@ -125,7 +134,11 @@ fn a_jump_from_not_closing_to_sticking_is_located_by_bisection() {
     assert_eq!(c.kind, CrossingKind::Jump);
     assert_eq!(c.free_side, FreeSide::Above);
     assert!(c.bracket[0] <= 2.5e3 && 2.5e3 <= c.bracket[1]);
-    assert!((c.bracket[1] / c.bracket[0] - 1.0) <= 1.01e-6, "{:?}", c.bracket);
+    assert!(
+        (c.bracket[1] / c.bracket[0] - 1.0) <= 1.01e-6,
+        "{:?}",
+        c.bracket
+    );
     assert!((c.critical_value - 2.5e3).abs() <= c.uncertainty);
     assert!((c.ratio_at_bracket[0] - 1.8).abs() < 1e-12 && c.ratio_at_bracket[1] == 0.0);
     assert!(c.slope.is_none());
@@ -140,7 +153,11 @@ fn a_jump_from_not_closing_to_sticking_is_located_by_bisection() {
     let c = &t.crossings[0];
     assert_eq!(c.kind, CrossingKind::Jump);
     assert_eq!(c.free_side, FreeSide::Below);
-    assert!((c.critical_value - 0.61).abs() <= 1e-6, "{}", c.critical_value);
+    assert!(
+        (c.critical_value - 0.61).abs() <= 1e-6,
+        "{}",
+        c.critical_value
+    );
     assert!(c.evaluations <= 40, "{}", c.evaluations);
 }
 
@@ -199,7 +216,10 @@ fn invalid_input_and_all_failed_scans_are_errors() {
     assert!(bad(threshold("k_s", 1.0, 2.0, &f, &opts(1e-6))).contains("section.key"));
     let fail = |_x: f64| -> Result<DesignPoint, PointError> { Err("always".into()) };
     let e = threshold("switch.k_s", 1.0, 2.0, fail, &opts(1e-6)).unwrap_err();
-    assert!(matches!(e, DesignError::ScanFailed { points: 9, .. }), "{e}");
+    assert!(
+        matches!(e, DesignError::ScanFailed { points: 9, .. }),
+        "{e}"
+    );
 }
 
 #[test]

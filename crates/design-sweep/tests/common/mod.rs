@@ -34,7 +34,9 @@ pub fn flaky(values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
         return Err(PointError::Failed("solver did not converge".into()));
     }
     if x < 150.0 {
-        return Err(PointError::OutOfDomain(format!("switch.k_s = {x} below 150")));
+        return Err(PointError::OutOfDomain(format!(
+            "switch.k_s = {x} below 150"
+        )));
     }
     if (x - 900.0).abs() < 1e-9 {
         panic!("a bug in the evaluator");
