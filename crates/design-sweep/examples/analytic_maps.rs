@@ -1,0 +1,76 @@
+//! Writes the maps of analytic stand-in evaluators to a directory, to look at:
+//! `cargo run -p design-sweep --example analytic_maps -- OUT_DIR`.
+
+use design_sweep::{
+    map_table, run_map, threshold, threshold_table, DesignPoint, Grid, Labels, MapRequest,
+    PointError, ThresholdOptions,
+};
+use std::path::PathBuf;
+
+fn point(ratio: f64, restoring: f64, closes: bool) -> DesignPoint {
+    DesignPoint {
+        pull_out_ratio: if closes { ratio } else { 0.0 },
+        largest_pull_out_pa: if closes { ratio * restoring } else { 0.0 },
+        restoring_pressure_pa: restoring,
+        cycles_to_accommodation: Some(5),
+        first_sticking_cycle: (closes && ratio > 1.0).then_some(1),
+        sticks: closes && ratio > 1.0,
+        closes,
+    }
+}
+
+/// ratio = (2e3/k)^2 (sigma/1e-8); does not close above k = 2e4; fails in one spot.
+fn eval(values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
+    let k = values[0].1;
+    let sigma = values.get(1).map_or(5e-9, |v| v.1);
+    if (k - 1e3).abs() < 1.0 && sigma < 2e-9 {
+        return Err(PointError::Failed("stand-in failure".into()));
+    }
+    Ok(point((2e3 / k).powi(2) * (sigma / 1e-8), k * 2e-6, k < 2e4))
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let out = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "out/design-demo".into()),
+    );
+    std::fs::create_dir_all(&out)?;
+    let labels = Labels::new()
+        .with_unit("switch.k_s", "Pa/m")
+        .with_unit("surface.sigma_s", "m");
+    let scene = serde_json::json!({"name": "analytic stand-in"});
+    for (name, specs) in [
+        ("map_1d", vec!["switch.k_s=1e2:1e5:log:31"]),
+        ("map_1d_lin", vec!["switch.k_s=500:3000:lin:26"]),
+        (
+            "map_2d",
+            vec![
+                "switch.k_s=1e2:1e5:log:31",
+                "surface.sigma_s=1e-9:9e-9:lin:17",
+            ],
+        ),
+    ] {
+        let request = MapRequest {
+            scene: scene.clone(),
+            grid: Grid::parse(&specs)?,
+            accuracy: "fast".into(),
+            shard: None,
+        };
+        let map = run_map(request, eval, |_, _| {});
+        std::fs::write(out.join(format!("{name}.svg")), map.to_svg(&labels)?)?;
+        std::fs::write(out.join(format!("{name}.csv")), map.to_csv()?)?;
+        std::fs::write(out.join(format!("{name}.json")), map.to_json())?;
+        println!("{name}:\n{}", map_table(&map, &labels));
+    }
+    let t = threshold(
+        "switch.k_s",
+        1e2,
+        1e5,
+        |k| eval(&[("switch.k_s", k)]),
+        &ThresholdOptions::default(),
+    )?;
+    println!("{}", threshold_table(&t, &labels));
+    std::fs::write(out.join("threshold.json"), t.to_json())?;
+    Ok(())
+}

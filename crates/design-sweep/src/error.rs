@@ -1,0 +1,57 @@
+use thiserror::Error;
+
+/// Errors of the `design-sweep` crate. Every message names the offending input.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum DesignError {
+    /// A `--vary FIELD=FROM:TO:lin|log:N` option that does not parse or validate.
+    #[error("invalid --vary `{option}`: {reason}")]
+    Axis {
+        /// The option text as given.
+        option: String,
+        /// What is wrong, with the offending value.
+        reason: String,
+    },
+    /// A grid that is not 1-D or 2-D, repeats a field, or is too large.
+    #[error("invalid grid: {0}")]
+    Grid(String),
+    /// A `--shard K/N` option that does not parse or validate.
+    #[error("invalid --shard `{option}`: {reason}")]
+    Shard {
+        /// The option text as given.
+        option: String,
+        /// What is wrong, with the offending value.
+        reason: String,
+    },
+    /// Shards that cannot be merged; `shard` names the directory (or label) at fault.
+    #[error("cannot merge {shard}: {reason}")]
+    Merge {
+        /// The label (directory) the caller gave for the shard at fault.
+        shard: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A `map.json` that does not parse as a design map.
+    #[error("not a design map: {0}")]
+    MapJson(String),
+    /// Invalid threshold-search input (range, tolerance, field name).
+    #[error("invalid threshold search: {0}")]
+    Threshold(String),
+    /// Every scan point of a threshold search failed: there is nothing to answer with.
+    #[error("threshold search over {parameter}: all {points} scan points failed; first at {value:e}: {detail}")]
+    ScanFailed {
+        /// The field that was varied.
+        parameter: String,
+        /// The number of scan points.
+        points: usize,
+        /// The first scan value.
+        value: f64,
+        /// The first failure's message.
+        detail: String,
+    },
+    /// The plot could not be drawn.
+    #[error("plot: {0}")]
+    Plot(String),
+    /// The CSV could not be written.
+    #[error("csv: {0}")]
+    Csv(String),
+}

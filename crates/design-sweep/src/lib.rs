@@ -1,0 +1,111 @@
+//! Stiction-free design of a switch: maps of the pull-out ratio over one or two scene
+//! fields, and the critical value of one field where the ratio crosses 1.
+//!
+//! The crate knows nothing of the contact model. It works on an evaluator closure that
+//! runs a full switch scene for given field values and reduces it to a [`DesignPoint`]
+//! (pull-out ratio = largest pull-out pressure / restoring pressure K_s d0; > 1 sticks).
+//!
+//! * [`Grid`] from `FIELD=FROM:TO:lin|log:N` options ([`Axis::parse`]); 1-D or 2-D, point
+//!   `i` ordered with the first axis varying slowest.
+//! * [`run_map`] evaluates the grid, or one [`Shard`] `K/N` of it, in parallel (rayon),
+//!   in index order: the same [`Map`] whatever the thread count. Failing points get a
+//!   [`Status`] and the map goes on.
+//! * [`Map::to_csv`], [`Map::to_json`], [`Map::to_svg`]: `map.csv`, `map.json`,
+//!   `map.svg` as strings (the caller writes them). [`merge`] joins shards into the
+//!   map of an unsharded run, byte for byte.
+//! * [`threshold`]: scan, then Brent-Dekker refinement of every crossing of ratio = 1,
+//!   with its uncertainty; [`threshold_table`] and [`map_table`] render text tables.
+//!
+//! ```
+//! use design_sweep::{run_map, threshold, DesignPoint, Grid, Labels, MapRequest,
+//!                    ThresholdOptions, FreeSide};
+//!
+//! // a stand-in for a switch run: ratio = (3e3 / k)^2, sticks below k = 3e3
+//! let point = |k: f64| -> Result<DesignPoint, String> {
+//!     let ratio = (3e3 / k).powi(2);
+//!     Ok(DesignPoint { pull_out_ratio: ratio, largest_pull_out_pa: ratio * k,
+//!                      restoring_pressure_pa: k, cycles_to_accommodation: Some(4),
+//!                      first_sticking_cycle: (ratio > 1.0).then_some(1),
+//!                      sticks: ratio > 1.0, closes: true })
+//! };
+//! let grid = Grid::parse(&["switch.k_s=1e2:1e5:log:7"])?;
+//! let request = MapRequest { scene: serde_json::json!({"name": "demo"}), grid,
+//!                            accuracy: "fast".into(), shard: None };
+//! let map = run_map(request, |v: &[(&str, f64)]| point(v[0].1), |_done, _total| {});
+//! assert_eq!(map.points().len(), 7);
+//! assert!(map.to_csv()?.starts_with("switch.k_s,pull_out_ratio,"));
+//! let svg = map.to_svg(&Labels::new().with_unit("switch.k_s", "Pa/m"))?;
+//! assert!(svg.contains("<svg"));
+//!
+//! let t = threshold("switch.k_s", 1e2, 1e5, point, &ThresholdOptions::default())?;
+//! assert!((t.critical_value.unwrap() / 3e3 - 1.0).abs() < 1e-6);
+//! assert_eq!(t.free_side, FreeSide::Above);
+//! # Ok::<(), design_sweep::DesignError>(())
+//! ```
+
+mod boundary;
+mod error;
+mod grid;
+mod map;
+mod plot;
+mod point;
+mod shard;
+mod table;
+mod threshold;
+
+use std::collections::BTreeMap;
+
+pub use boundary::BoundaryPoint;
+pub use error::DesignError;
+pub use grid::{Axis, Grid, Spacing, MAX_AXIS_POINTS, MAX_GRID_POINTS};
+pub use map::{
+    merge, run_map, Map, MapPoint, MapRequest, MapSummary, CSV_COLUMNS, MAP_FORMAT, MAP_VERSION,
+};
+pub use point::{DesignPoint, PointError, Status};
+pub use shard::Shard;
+pub use table::{map_table, threshold_table};
+pub use threshold::{
+    ratio_rel_error, threshold, Crossing, CrossingKind, FreeSide, ScanPoint, Threshold,
+    ThresholdOptions,
+};
+
+/// Plot title and the unit of each field (`switch.k_s` -> `Pa/m`), for plots and tables.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Labels {
+    /// Plot title; `None` makes one from the field names and the accuracy mode.
+    pub title: Option<String>,
+    /// Unit per field.
+    pub units: BTreeMap<String, String>,
+}
+
+impl Labels {
+    /// No title, no units.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds the unit of `field`.
+    pub fn with_unit(mut self, field: impl Into<String>, unit: impl Into<String>) -> Self {
+        self.units.insert(field.into(), unit.into());
+        self
+    }
+
+    /// Sets the plot title.
+    pub fn with_title(mut self, title: impl Into<String>) -> Self {
+        self.title = Some(title.into());
+        self
+    }
+
+    /// The unit of `field`, if known.
+    pub fn unit(&self, field: &str) -> Option<&str> {
+        self.units.get(field).map(String::as_str)
+    }
+
+    /// `field [unit]`, or `field` without a unit.
+    pub fn axis_label(&self, field: &str) -> String {
+        match self.unit(field) {
+            Some(u) => format!("{field} [{u}]"),
+            None => field.to_owned(),
+        }
+    }
+}

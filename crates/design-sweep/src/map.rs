@@ -1,0 +1,622 @@
+//! Maps: evaluate a grid (or one shard of it) in parallel, write CSV/JSON, merge shards.
+
+use crate::grid::Grid;
+use crate::point::{guarded, DesignPoint, PointError, Status};
+use crate::shard::Shard;
+use crate::DesignError;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize, Serializer};
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The `format` tag of `map.json`.
+pub const MAP_FORMAT: &str = "stiction-design-map";
+/// The `version` of `map.json` written by this crate.
+pub const MAP_VERSION: u32 = 1;
+
+/// The columns of `map.csv` after the varied fields, in order.
+pub const CSV_COLUMNS: [&str; 8] = [
+    "pull_out_ratio",
+    "largest_pull_out_pa",
+    "restoring_pressure_pa",
+    "cycles_to_accommodation",
+    "first_sticking_cycle",
+    "sticks",
+    "closes",
+    "status",
+];
+
+/// What to compute: the grid, which part of it, and what to echo into `map.json`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapRequest {
+    /// The scene as run (echoed verbatim; merge compares it exactly).
+    pub scene: Value,
+    /// The grid.
+    pub grid: Grid,
+    /// The accuracy mode's name (echoed; merge compares it).
+    pub accuracy: String,
+    /// Part of the grid to run; `None` runs it whole.
+    pub shard: Option<Shard>,
+}
+
+/// One evaluated grid point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapPoint {
+    /// Index in the grid (see [`Grid`] for the order).
+    pub index: usize,
+    /// The field values, one per axis.
+    pub values: Vec<f64>,
+    /// What became of the point.
+    pub status: Status,
+    /// The design point; present exactly when the status is `Ok` or `DoesNotClose`.
+    pub design: Option<DesignPoint>,
+}
+
+impl MapPoint {
+    /// The pull-out ratio when the point has a design (0 for `DoesNotClose`).
+    pub fn ratio(&self) -> Option<f64> {
+        self.design.map(|d| d.pull_out_ratio)
+    }
+
+    /// `Some(true)` if the point is free (ratio < 1), `Some(false)` if not, `None` if failed.
+    pub fn free(&self) -> Option<bool> {
+        self.ratio().map(|r| r < 1.0)
+    }
+}
+
+/// An evaluated map (whole or one shard). Points are in ascending index order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Map {
+    scene: Value,
+    grid: Grid,
+    accuracy: String,
+    shard: Option<Shard>,
+    points: Vec<MapPoint>,
+}
+
+/// Evaluates the points of `request` (all, or its shard's) in parallel on the current
+/// rayon pool and collects them in index order, so the map does not depend on the number
+/// of threads or on sharding as long as `eval` is deterministic.
+///
+/// `eval` receives `(field, value)` per axis. A point whose evaluator returns an error,
+/// panics or gives a non-finite number gets a status and the map goes on. `progress(done,
+/// total)` is called once with `done = 0` and after every point, from worker threads.
+pub fn run_map<F, E, P>(request: MapRequest, eval: F, progress: P) -> Map
+where
+    F: Fn(&[(&str, f64)]) -> Result<DesignPoint, E> + Sync,
+    E: Into<PointError>,
+    P: Fn(usize, usize) + Sync,
+{
+    let MapRequest {
+        scene,
+        grid,
+        accuracy,
+        shard,
+    } = request;
+    let indices: Vec<usize> = match shard {
+        Some(s) => s.indices(grid.len()).collect(),
+        None => (0..grid.len()).collect(),
+    };
+    let total = indices.len();
+    progress(0, total);
+    let done = AtomicUsize::new(0);
+    let points = indices
+        .par_iter()
+        .map(|&index| {
+            let values = grid.values(index);
+            let args: Vec<(&str, f64)> = grid
+                .axes()
+                .iter()
+                .map(|a| a.field.as_str())
+                .zip(values.iter().copied())
+                .collect();
+            let (status, design) = guarded(|| eval(&args));
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+            MapPoint {
+                index,
+                values,
+                status,
+                design,
+            }
+        })
+        .collect();
+    Map {
+        scene,
+        grid,
+        accuracy,
+        shard,
+        points,
+    }
+}
+
+impl Map {
+    /// The scene echo.
+    pub fn scene(&self) -> &Value {
+        &self.scene
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// The accuracy mode's name.
+    pub fn accuracy(&self) -> &str {
+        &self.accuracy
+    }
+
+    /// The shard this map is part of (`None` for a whole or merged map).
+    pub fn shard(&self) -> Option<Shard> {
+        self.shard
+    }
+
+    /// The evaluated points, ascending index.
+    pub fn points(&self) -> &[MapPoint] {
+        &self.points
+    }
+
+    /// The point of grid index `i`, if this map holds it.
+    pub fn point(&self, i: usize) -> Option<&MapPoint> {
+        self.points
+            .binary_search_by_key(&i, |p| p.index)
+            .ok()
+            .map(|k| &self.points[k])
+    }
+
+    /// `map.csv`: a header (the varied fields, then [`CSV_COLUMNS`]) and one row per point.
+    /// Numbers in Rust's shortest round-trip form (`{:e}`); absent values are empty cells.
+    pub fn to_csv(&self) -> Result<String, DesignError> {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        let csv_err = |e: csv::Error| DesignError::Csv(e.to_string());
+        let header: Vec<&str> = self
+            .grid
+            .axes()
+            .iter()
+            .map(|a| a.field.as_str())
+            .chain(CSV_COLUMNS)
+            .collect();
+        w.write_record(&header).map_err(csv_err)?;
+        for p in &self.points {
+            let mut row: Vec<String> = p.values.iter().map(|v| format!("{v:e}")).collect();
+            match &p.design {
+                Some(d) => {
+                    row.push(format!("{:e}", d.pull_out_ratio));
+                    row.push(format!("{:e}", d.largest_pull_out_pa));
+                    row.push(format!("{:e}", d.restoring_pressure_pa));
+                    row.push(opt(d.cycles_to_accommodation));
+                    row.push(opt(d.first_sticking_cycle));
+                    row.push(d.sticks.to_string());
+                    row.push(d.closes.to_string());
+                }
+                None => row.extend(std::iter::repeat_n(String::new(), 7)),
+            }
+            row.push(p.status.word().to_owned());
+            w.write_record(&row).map_err(csv_err)?;
+        }
+        let bytes = w
+            .into_inner()
+            .map_err(|e| DesignError::Csv(e.to_string()))?;
+        String::from_utf8(bytes).map_err(|e| DesignError::Csv(e.to_string()))
+    }
+
+    /// `map.json`, pretty-printed with a final newline. No `null` and no NaN: absent values
+    /// are omitted. The shard appears only in a shard's map.
+    pub fn to_json(&self) -> String {
+        let mut s = serde_json::to_string_pretty(self).expect("a map always serialises");
+        s.push('\n');
+        s
+    }
+
+    /// Reads a `map.json` back (numbers bit-identical), checking it is consistent: known
+    /// format, valid grid and shard, points ascending, belonging to the shard, with the
+    /// grid's values.
+    pub fn from_json(text: &str) -> Result<Map, DesignError> {
+        let m: MapIn =
+            serde_json::from_str(text).map_err(|e| DesignError::MapJson(e.to_string()))?;
+        let bad = |m: String| DesignError::MapJson(m);
+        if m.format != MAP_FORMAT || m.version != MAP_VERSION {
+            return Err(bad(format!(
+                "format `{}` version {}, expected `{MAP_FORMAT}` version {MAP_VERSION}",
+                m.format, m.version
+            )));
+        }
+        m.grid.validate()?;
+        if let Some(s) = m.shard {
+            Shard::new(s.k, s.n)?;
+        }
+        let mut points = Vec::with_capacity(m.points.len());
+        let mut last = None;
+        for p in m.points {
+            let i = p.index;
+            if i >= m.grid.len() {
+                return Err(bad(format!(
+                    "point index {i} outside the grid of {} points",
+                    m.grid.len()
+                )));
+            }
+            if last.is_some_and(|l| i <= l) {
+                return Err(bad(format!("point index {i} out of order or repeated")));
+            }
+            last = Some(i);
+            if let Some(s) = m.shard {
+                if !s.contains(i) {
+                    return Err(bad(format!("point {i} does not belong to shard {s}")));
+                }
+            }
+            let values = m.grid.values(i);
+            for (a, v) in m.grid.axes().iter().zip(&values) {
+                if p.values.get(&a.field) != Some(v) {
+                    return Err(bad(format!(
+                        "point {i}: {} is not the grid value {v:e}",
+                        a.field
+                    )));
+                }
+            }
+            let status = Status::from_parts(&p.status, p.detail)
+                .ok_or_else(|| bad(format!("point {i}: unknown status `{}`", p.status)))?;
+            let design = match (
+                status.has_design(),
+                p.pull_out_ratio,
+                p.largest_pull_out_pa,
+                p.restoring_pressure_pa,
+                p.sticks,
+                p.closes,
+            ) {
+                (true, Some(r), Some(po), Some(rp), Some(sticks), Some(closes)) => {
+                    Some(DesignPoint {
+                        pull_out_ratio: r,
+                        largest_pull_out_pa: po,
+                        restoring_pressure_pa: rp,
+                        cycles_to_accommodation: p.cycles_to_accommodation,
+                        first_sticking_cycle: p.first_sticking_cycle,
+                        sticks,
+                        closes,
+                    })
+                }
+                (false, None, None, None, None, None) => None,
+                _ => {
+                    return Err(bad(format!(
+                        "point {i}: status `{}` does not match the values present",
+                        p.status
+                    )))
+                }
+            };
+            points.push(MapPoint {
+                index: i,
+                values,
+                status,
+                design,
+            });
+        }
+        Ok(Map {
+            scene: m.scene,
+            grid: m.grid,
+            accuracy: m.accuracy,
+            shard: m.shard,
+            points,
+        })
+    }
+
+    /// Counts by status and the extreme ratios of the closing points.
+    pub fn summary(&self) -> MapSummary {
+        let mut s = MapSummary {
+            grid_points: self.grid.len(),
+            points: self.points.len(),
+            ok: 0,
+            does_not_close: 0,
+            out_of_domain: 0,
+            failed: 0,
+            sticking: 0,
+            min_ratio: None,
+            max_ratio: None,
+        };
+        for p in &self.points {
+            match &p.status {
+                Status::Ok => s.ok += 1,
+                Status::DoesNotClose => s.does_not_close += 1,
+                Status::OutOfDomain(_) => s.out_of_domain += 1,
+                Status::Failed(_) => s.failed += 1,
+            }
+            if let (Status::Ok, Some(d)) = (&p.status, &p.design) {
+                if d.sticks {
+                    s.sticking += 1;
+                }
+                let r = d.pull_out_ratio;
+                if s.min_ratio.is_none_or(|(_, m)| r < m) {
+                    s.min_ratio = Some((p.index, r));
+                }
+                if s.max_ratio.is_none_or(|(_, m)| r > m) {
+                    s.max_ratio = Some((p.index, r));
+                }
+            }
+        }
+        s
+    }
+}
+
+/// Counts of a map's points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapSummary {
+    /// Points of the whole grid.
+    pub grid_points: usize,
+    /// Points in this map (fewer than `grid_points` for a shard).
+    pub points: usize,
+    /// Points with status `ok`.
+    pub ok: usize,
+    /// Points that do not close.
+    pub does_not_close: usize,
+    /// Points out of a field's domain.
+    pub out_of_domain: usize,
+    /// Points whose run failed.
+    pub failed: usize,
+    /// Closing points that stick (as flagged by the evaluator).
+    pub sticking: usize,
+    /// (index, ratio) of the smallest ratio among closing points.
+    pub min_ratio: Option<(usize, f64)>,
+    /// (index, ratio) of the largest ratio among closing points.
+    pub max_ratio: Option<(usize, f64)>,
+}
+
+fn opt(v: Option<usize>) -> String {
+    v.map(|c| c.to_string()).unwrap_or_default()
+}
+
+/// Joins the shards of one map into exactly the map of an unsharded run (its CSV, JSON and
+/// SVG are byte-identical to those of the whole run). Each shard comes with a label, the
+/// directory it was read from, which errors name. Refuses: no shards, an unsharded map,
+/// differing scene, grid or accuracy, differing N, a repeated or missing part.
+pub fn merge<I>(shards: I) -> Result<Map, DesignError>
+where
+    I: IntoIterator<Item = (String, Map)>,
+{
+    let shards: Vec<(String, Map)> = shards.into_iter().collect();
+    let Some((first_label, first)) = shards.first() else {
+        return Err(DesignError::Merge {
+            shard: "(nothing)".into(),
+            reason: "no shards given".into(),
+        });
+    };
+    let refuse = |label: &str, reason: String| DesignError::Merge {
+        shard: label.to_owned(),
+        reason,
+    };
+    let part = |label: &str, m: &Map| {
+        m.shard.ok_or_else(|| {
+            refuse(
+                label,
+                "holds an unsharded map (run with --shard K/N to make parts)".into(),
+            )
+        })
+    };
+    let n = part(first_label, first)?.n;
+    // parts seen so far (a map: N comes from a file and may be anything)
+    let mut owner: BTreeMap<usize, &str> = BTreeMap::new();
+    for (label, m) in &shards {
+        let s = part(label, m)?;
+        if s.n != n {
+            return Err(refuse(
+                label,
+                format!("is part {s} but {first_label} is part of {n}"),
+            ));
+        }
+        if m.scene != first.scene {
+            return Err(refuse(
+                label,
+                format!(
+                    "its scene differs from {first_label}'s at {}",
+                    first_difference(&first.scene, &m.scene, String::new())
+                ),
+            ));
+        }
+        if m.grid != first.grid {
+            return Err(refuse(
+                label,
+                format!(
+                    "its grid ({}) differs from {first_label}'s ({})",
+                    describe(&m.grid),
+                    describe(&first.grid)
+                ),
+            ));
+        }
+        if m.accuracy != first.accuracy {
+            return Err(refuse(
+                label,
+                format!(
+                    "accuracy `{}` differs from {first_label}'s `{}`",
+                    m.accuracy, first.accuracy
+                ),
+            ));
+        }
+        if let Some(other) = owner.insert(s.k, label) {
+            return Err(refuse(label, format!("part {s} is also in {other}")));
+        }
+        let expected: Vec<usize> = s.indices(m.grid.len()).collect();
+        let got: Vec<usize> = m.points.iter().map(|p| p.index).collect();
+        if got != expected {
+            return Err(refuse(
+                label,
+                format!(
+                    "part {s} holds {} points, expected {} (an incomplete or altered shard)",
+                    got.len(),
+                    expected.len()
+                ),
+            ));
+        }
+    }
+    if owner.len() < n {
+        let missing: Vec<String> = (1..=n)
+            .filter(|k| !owner.contains_key(k))
+            .take(20)
+            .map(|k| format!("{k}/{n}"))
+            .collect();
+        let more = n - owner.len() - missing.len();
+        return Err(refuse(
+            &shards
+                .iter()
+                .map(|(l, _)| l.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
+            format!(
+                "missing part(s) {}{}",
+                missing.join(", "),
+                if more > 0 {
+                    format!(" and {more} more")
+                } else {
+                    String::new()
+                }
+            ),
+        ));
+    }
+    let (scene, grid, accuracy) = (
+        first.scene.clone(),
+        first.grid.clone(),
+        first.accuracy.clone(),
+    );
+    let mut points: Vec<MapPoint> = shards.into_iter().flat_map(|(_, m)| m.points).collect();
+    points.sort_by_key(|p| p.index);
+    Ok(Map {
+        scene,
+        grid,
+        accuracy,
+        shard: None,
+        points,
+    })
+}
+
+fn describe(g: &Grid) -> String {
+    g.axes()
+        .iter()
+        .map(|a| format!("{}={:e}:{:e}:{}:{}", a.field, a.from, a.to, a.spacing, a.n))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The JSON pointer of the first place where `a` and `b` differ.
+fn first_difference(a: &Value, b: &Value, at: String) -> String {
+    match (a, b) {
+        (Value::Object(x), Value::Object(y)) => {
+            for (k, v) in x {
+                match y.get(k) {
+                    Some(w) if w == v => {}
+                    Some(w) => return first_difference(v, w, format!("{at}/{k}")),
+                    None => return format!("{at}/{k} (absent in one)"),
+                }
+            }
+            match y.keys().find(|k| !x.contains_key(*k)) {
+                Some(k) => format!("{at}/{k} (absent in one)"),
+                None => at,
+            }
+        }
+        (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
+            for (i, (v, w)) in x.iter().zip(y).enumerate() {
+                if v != w {
+                    return first_difference(v, w, format!("{at}/{i}"));
+                }
+            }
+            at
+        }
+        _ => format!("{} ({a} vs {b})", if at.is_empty() { "/" } else { &at }),
+    }
+}
+
+// ------------------------------------------------------------ JSON records
+
+#[derive(Serialize)]
+struct MapOut<'a> {
+    format: &'static str,
+    version: u32,
+    accuracy: &'a str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shard: Option<Shard>,
+    grid: &'a Grid,
+    scene: &'a Value,
+    points: Vec<PointOut<'a>>,
+}
+
+#[derive(Serialize)]
+struct PointOut<'a> {
+    index: usize,
+    values: Named<'a>,
+    status: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    detail: Option<&'a str>,
+    #[serde(flatten)]
+    design: Option<&'a DesignPoint>,
+}
+
+/// Field values as a JSON object in axis order.
+struct Named<'a>(&'a Grid, &'a [f64]);
+
+impl Serialize for Named<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(Some(self.1.len()))?;
+        for (a, v) in self.0.axes().iter().zip(self.1) {
+            m.serialize_entry(&a.field, v)?;
+        }
+        m.end()
+    }
+}
+
+impl Serialize for Map {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        MapOut {
+            format: MAP_FORMAT,
+            version: MAP_VERSION,
+            accuracy: &self.accuracy,
+            shard: self.shard,
+            grid: &self.grid,
+            scene: &self.scene,
+            points: self
+                .points
+                .iter()
+                .map(|p| PointOut {
+                    index: p.index,
+                    values: Named(&self.grid, &p.values),
+                    status: p.status.word(),
+                    detail: p.status.detail(),
+                    design: p.design.as_ref(),
+                })
+                .collect(),
+        }
+        .serialize(s)
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MapIn {
+    format: String,
+    version: u32,
+    accuracy: String,
+    #[serde(default)]
+    shard: Option<Shard>,
+    grid: Grid,
+    scene: Value,
+    points: Vec<PointIn>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PointIn {
+    index: usize,
+    values: BTreeMap<String, f64>,
+    status: String,
+    #[serde(default)]
+    detail: Option<String>,
+    #[serde(default)]
+    pull_out_ratio: Option<f64>,
+    #[serde(default)]
+    largest_pull_out_pa: Option<f64>,
+    #[serde(default)]
+    restoring_pressure_pa: Option<f64>,
+    #[serde(default)]
+    cycles_to_accommodation: Option<usize>,
+    #[serde(default)]
+    first_sticking_cycle: Option<usize>,
+    #[serde(default)]
+    sticks: Option<bool>,
+    #[serde(default)]
+    closes: Option<bool>,
+}

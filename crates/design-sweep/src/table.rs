@@ -1,0 +1,272 @@
+//! Plain-text tables for `--format table`.
+
+use crate::map::Map;
+use crate::plot::fmt_sig;
+use crate::threshold::{FreeSide, Threshold};
+use crate::Labels;
+use std::fmt::Write;
+
+/// Failed points listed by name in a table (the rest are counted).
+const LISTED_FAILURES: usize = 10;
+
+fn with_unit(x: f64, digits: usize, unit: Option<&str>) -> String {
+    match unit {
+        Some(u) => format!("{} {u}", fmt_sig(x, digits)),
+        None => fmt_sig(x, digits),
+    }
+}
+
+fn ratio_word(r: Option<f64>) -> String {
+    match r {
+        Some(0.0) => "0 (does not close)".into(),
+        Some(r) if r < 1.0 => format!("{} (free)", fmt_sig(r, 4)),
+        Some(r) => format!("{} (sticks)", fmt_sig(r, 4)),
+        None => "- (point failed)".into(),
+    }
+}
+
+/// The answer of a threshold search as a table; values carry `labels`' unit of the field.
+pub fn threshold_table(t: &Threshold, labels: &Labels) -> String {
+    let unit = labels.unit(&t.parameter);
+    let v = |x: f64| with_unit(x, 6, unit);
+    let mut s = String::new();
+    let row = |s: &mut String, k: &str, v: String| {
+        let _ = writeln!(s, "{k:<16}{v}");
+    };
+    row(&mut s, "parameter", labels.axis_label(&t.parameter));
+    row(
+        &mut s,
+        "range",
+        format!(
+            "{} .. {}, {} scan of {} points",
+            v(t.from),
+            v(t.to),
+            t.spacing,
+            t.scan.len()
+        ),
+    );
+    row(&mut s, "ratio at from", ratio_word(t.ratio_at_from));
+    row(&mut s, "ratio at to", ratio_word(t.ratio_at_to));
+    match (t.critical_value, t.uncertainty, t.kind) {
+        (Some(c), Some(u), Some(kind)) => row(
+            &mut s,
+            "critical value",
+            format!(
+                "{} +- {}, free {} ({})",
+                v(c),
+                with_unit(u, 2, unit),
+                t.free_side.word(),
+                kind.word()
+            ),
+        ),
+        _ => row(
+            &mut s,
+            "critical value",
+            match t.free_side {
+                FreeSide::WholeRange => "none in range: free (ratio < 1) over the whole range",
+                _ => "none in range: sticks (ratio >= 1) over the whole range",
+            }
+            .into(),
+        ),
+    }
+    row(&mut s, "evaluations", t.evaluations.to_string());
+    if t.crossings.len() > 1 {
+        let _ = writeln!(s, "\ncrossings ({}):", t.crossings.len());
+        let _ = writeln!(
+            s,
+            "  {:>2}  {:<22}{:<14}{:<7}{:<12}bracket",
+            "#", "critical value", "uncertainty", "free", "kind"
+        );
+        for (i, c) in t.crossings.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "  {:>2}  {:<22}{:<14}{:<7}{:<12}{} .. {}",
+                i + 1,
+                v(c.critical_value),
+                fmt_sig(c.uncertainty, 2),
+                c.free_side.word(),
+                c.kind.word(),
+                fmt_sig(c.bracket[0], 8),
+                fmt_sig(c.bracket[1], 8)
+            );
+        }
+    }
+    for c in t.crossings.iter().filter(|c| c.detail.is_some()) {
+        let _ = writeln!(
+            s,
+            "unresolved near {}: {}",
+            v(c.critical_value),
+            c.detail.as_deref().unwrap_or_default()
+        );
+    }
+    let failed: Vec<_> = t.failed_points().collect();
+    if !failed.is_empty() {
+        let _ = writeln!(s, "\nfailed scan points ({}):", failed.len());
+        for p in failed.iter().take(LISTED_FAILURES) {
+            let _ = writeln!(
+                s,
+                "  {:<22}{:<15}{}",
+                v(p.value),
+                p.status,
+                p.detail.as_deref().unwrap_or_default()
+            );
+        }
+    }
+    s
+}
+
+/// A summary of a map as a table: grid, statuses, extreme ratios, the boundary (1-D
+/// crossings, or the number of contour lines of a 2-D map) and the failed points.
+pub fn map_table(map: &Map, labels: &Labels) -> String {
+    let g = map.grid();
+    let sum = map.summary();
+    let mut s = String::new();
+    let row = |s: &mut String, k: &str, v: String| {
+        let _ = writeln!(s, "{k:<16}{v}");
+    };
+    let at = |i: usize| {
+        g.axes()
+            .iter()
+            .zip(g.values(i))
+            .map(|(a, x)| format!("{} = {}", a.field, with_unit(x, 6, labels.unit(&a.field))))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    row(
+        &mut s,
+        "map",
+        if g.dim() == 1 {
+            format!(
+                "1-D, {} points (accuracy {})",
+                sum.grid_points,
+                map.accuracy()
+            )
+        } else {
+            format!(
+                "2-D, {} x {} = {} points (accuracy {})",
+                g.axes()[0].n,
+                g.axes()[1].n,
+                sum.grid_points,
+                map.accuracy()
+            )
+        },
+    );
+    if let Some(sh) = map.shard() {
+        row(
+            &mut s,
+            "shard",
+            format!("{sh} ({} of {} points)", sum.points, sum.grid_points),
+        );
+    }
+    for (k, a) in g.axes().iter().enumerate() {
+        let unit = labels.unit(&a.field);
+        row(
+            &mut s,
+            &format!("axis {}", k + 1),
+            format!(
+                "{}: {} .. {}, {}, {} values{}",
+                labels.axis_label(&a.field),
+                with_unit(a.from, 6, unit),
+                with_unit(a.to, 6, unit),
+                a.spacing,
+                a.n,
+                if g.dim() == 2 && k == 0 {
+                    " (varies slowest)"
+                } else {
+                    ""
+                }
+            ),
+        );
+    }
+    row(
+        &mut s,
+        "statuses",
+        format!(
+            "ok {}, does_not_close {}, out_of_domain {}, failed {}",
+            sum.ok, sum.does_not_close, sum.out_of_domain, sum.failed
+        ),
+    );
+    row(
+        &mut s,
+        "sticking",
+        format!("{} of {} closing points", sum.sticking, sum.ok),
+    );
+    if let Some((i, r)) = sum.min_ratio {
+        row(
+            &mut s,
+            "smallest ratio",
+            format!("{} at {}", fmt_sig(r, 4), at(i)),
+        );
+    }
+    if let Some((i, r)) = sum.max_ratio {
+        row(
+            &mut s,
+            "largest ratio",
+            format!("{} at {}", fmt_sig(r, 4), at(i)),
+        );
+    }
+    if g.dim() == 1 {
+        let a = &g.axes()[0];
+        let unit = labels.unit(&a.field);
+        let b = map.boundary_1d();
+        if b.is_empty() {
+            row(
+                &mut s,
+                "boundary",
+                "no crossing of ratio = 1 on the grid".into(),
+            );
+        }
+        for p in b {
+            row(
+                &mut s,
+                "boundary",
+                format!(
+                    "{} ~ {} (between {} and {}), free {}, {}",
+                    a.field,
+                    with_unit(p.value, 4, unit),
+                    fmt_sig(p.between[0], 6),
+                    fmt_sig(p.between[1], 6),
+                    p.free_side.word(),
+                    p.kind.word()
+                ),
+            );
+        }
+    } else {
+        let lines = map.boundary_2d();
+        row(
+            &mut s,
+            "boundary",
+            if lines.is_empty() {
+                "no crossing of ratio = 1 on the grid".into()
+            } else {
+                format!(
+                    "{} contour line(s) of ratio = 1, {} vertices (see map.svg)",
+                    lines.len(),
+                    lines.iter().map(Vec::len).sum::<usize>()
+                )
+            },
+        );
+    }
+    let failed: Vec<_> = map
+        .points()
+        .iter()
+        .filter(|p| p.status.detail().is_some())
+        .collect();
+    if !failed.is_empty() {
+        let _ = writeln!(s, "\nfailed points ({}):", failed.len());
+        for p in failed.iter().take(LISTED_FAILURES) {
+            let _ = writeln!(
+                s,
+                "  #{:<6} {}: {} {}",
+                p.index,
+                at(p.index),
+                p.status.word(),
+                p.status.detail().unwrap_or_default()
+            );
+        }
+        if failed.len() > LISTED_FAILURES {
+            let _ = writeln!(s, "  ... and {} more", failed.len() - LISTED_FAILURES);
+        }
+    }
+    s
+}

@@ -1,0 +1,519 @@
+//! The critical value(s) of one field where the pull-out ratio crosses 1.
+
+use crate::grid::{spaced, Spacing};
+use crate::point::{check_field, guarded, DesignPoint, PointError};
+use crate::DesignError;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// The side of a crossing (in increasing value) where the ratio is below 1, or, without a
+/// crossing, whether the whole range is free.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FreeSide {
+    /// Free (ratio < 1) for values above the critical value.
+    Above,
+    /// Free for values below the critical value.
+    Below,
+    /// No crossing: every evaluated point of the range is free.
+    WholeRange,
+    /// No crossing: no evaluated point of the range is free.
+    Nowhere,
+}
+
+impl FreeSide {
+    /// `above`, `below`, `whole_range`, `nowhere`.
+    pub fn word(&self) -> &'static str {
+        match self {
+            FreeSide::Above => "above",
+            FreeSide::Below => "below",
+            FreeSide::WholeRange => "whole_range",
+            FreeSide::Nowhere => "nowhere",
+        }
+    }
+}
+
+/// How the ratio crosses 1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CrossingKind {
+    /// The ratio passes continuously through 1.
+    Continuous,
+    /// The ratio jumps across 1 (e.g. from 0, does not close, to a sticking point).
+    Jump,
+    /// A point failed while the crossing was being refined: the bracket is reported.
+    Unresolved,
+}
+
+impl CrossingKind {
+    /// `continuous`, `jump`, `unresolved`.
+    pub fn word(&self) -> &'static str {
+        match self {
+            CrossingKind::Continuous => "continuous",
+            CrossingKind::Jump => "jump",
+            CrossingKind::Unresolved => "unresolved",
+        }
+    }
+}
+
+/// Settings of a threshold search.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThresholdOptions {
+    /// Relative tolerance on the critical value (in (0, 0.1]). On a lin scan whose range
+    /// contains 0 it is at least `tolerance * 1e-6 * max(|from|, |to|)` in absolute terms.
+    pub tolerance: f64,
+    /// Relative error of the ratio itself, from the accuracy mode (see
+    /// [`ratio_rel_error`]); enters the reported uncertainty.
+    pub ratio_rel_error: f64,
+    /// Scan points; `None` chooses 9 (lin) or 9 to 17 (log, 4 per decade).
+    pub scan_points: Option<usize>,
+}
+
+impl Default for ThresholdOptions {
+    fn default() -> Self {
+        ThresholdOptions {
+            tolerance: 1e-6,
+            ratio_rel_error: 1e-6,
+            scan_points: None,
+        }
+    }
+}
+
+/// The relative error of the pull-out ratio for an accuracy mode: `accurate` 1e-8,
+/// `balanced` 1e-6, `fast` 1e-4; `None` for another name.
+pub fn ratio_rel_error(accuracy: &str) -> Option<f64> {
+    match accuracy {
+        "accurate" => Some(1e-8),
+        "balanced" => Some(1e-6),
+        "fast" => Some(1e-4),
+        _ => None,
+    }
+}
+
+/// One evaluated scan point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ScanPoint {
+    /// The field value.
+    pub value: f64,
+    /// `ok`, `does_not_close`, `out_of_domain` or `failed`.
+    pub status: &'static str,
+    /// The failure message, for `out_of_domain` and `failed`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detail: Option<String>,
+    /// The ratio, for `ok` and `does_not_close`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pull_out_ratio: Option<f64>,
+}
+
+/// One crossing of ratio = 1.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Crossing {
+    /// The critical value (secant estimate in the final bracket; its midpoint for a jump).
+    pub critical_value: f64,
+    /// The side where the ratio is below 1.
+    pub free_side: FreeSide,
+    /// Continuous, jump or unresolved.
+    pub kind: CrossingKind,
+    /// Uncertainty of the critical value, same unit: ratio error / |d ln ratio / d ln
+    /// value| × value + the root tolerance; half the bracket for a jump or unresolved.
+    pub uncertainty: f64,
+    /// The final bracket, ascending.
+    pub bracket: [f64; 2],
+    /// The ratios at the bracket ends.
+    pub ratio_at_bracket: [f64; 2],
+    /// d ln(ratio) / d ln(value) across the final bracket (continuous crossings only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slope: Option<f64>,
+    /// Evaluations spent refining this crossing (after the scan).
+    pub evaluations: usize,
+    /// Why an unresolved crossing could not be refined.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detail: Option<String>,
+}
+
+/// The answer of a threshold search. Top-level `critical_value`, `free_side`, `kind` and
+/// `uncertainty` are those of the first crossing (lowest value); without a crossing
+/// `critical_value`, `kind` and `uncertainty` are absent and `free_side` is `whole_range`
+/// or `nowhere`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Threshold {
+    /// The varied field.
+    pub parameter: String,
+    /// Critical value of the first crossing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub critical_value: Option<f64>,
+    /// Free side of the first crossing, or of the whole range.
+    pub free_side: FreeSide,
+    /// Kind of the first crossing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kind: Option<CrossingKind>,
+    /// Uncertainty of the first crossing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub uncertainty: Option<f64>,
+    /// Ratio at `from` (absent if that point failed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ratio_at_from: Option<f64>,
+    /// Ratio at `to` (absent if that point failed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ratio_at_to: Option<f64>,
+    /// Evaluator calls in all (scan and refinement).
+    pub evaluations: usize,
+    /// Range start as given.
+    pub from: f64,
+    /// Range end as given.
+    pub to: f64,
+    /// Spacing of the scan (and coordinate of the refinement: ln(value) for log).
+    pub spacing: Spacing,
+    /// Relative tolerance on the critical value.
+    pub tolerance: f64,
+    /// Relative error of the ratio assumed for the uncertainty.
+    pub ratio_rel_error: f64,
+    /// Every crossing, ascending value.
+    pub crossings: Vec<Crossing>,
+    /// The scan, ascending value.
+    pub scan: Vec<ScanPoint>,
+}
+
+impl Threshold {
+    /// The scan points that failed (status `out_of_domain` or `failed`).
+    pub fn failed_points(&self) -> impl Iterator<Item = &ScanPoint> {
+        self.scan.iter().filter(|p| p.pull_out_ratio.is_none())
+    }
+
+    /// Pretty JSON with a final newline.
+    pub fn to_json(&self) -> String {
+        let mut s = serde_json::to_string_pretty(self).expect("a threshold always serialises");
+        s.push('\n');
+        s
+    }
+}
+
+/// Largest evaluations spent on refining one crossing.
+const MAX_REFINE_EVALUATIONS: usize = 200;
+
+/// Finds where `pull_out_ratio = 1` as `field` goes from `from` to `to`.
+///
+/// Scans the range (log-spaced when both ends are > 0 and span a decade or more; the scan
+/// points are evaluated in parallel on the current rayon pool), then refines every sign
+/// change of ln(ratio) between neighbouring successful scan points with a Brent-Dekker
+/// zero-in in ln(value) (log) or value (lin), falling back to bisection where a point does
+/// not close (ratio 0). Failed scan points are reported and skipped. Crossings closer than
+/// the scan spacing can be missed. Errors only on invalid input or when every scan point
+/// fails.
+pub fn threshold<F, E>(
+    field: &str,
+    from: f64,
+    to: f64,
+    eval: F,
+    options: &ThresholdOptions,
+) -> Result<Threshold, DesignError>
+where
+    F: Fn(f64) -> Result<DesignPoint, E> + Sync,
+    E: Into<PointError>,
+{
+    let bad = |m: String| DesignError::Threshold(m);
+    check_field(field).map_err(bad)?;
+    if !(from.is_finite() && to.is_finite()) {
+        return Err(bad(format!(
+            "--from {from} and --to {to} must be finite numbers"
+        )));
+    }
+    if from == to {
+        return Err(bad(format!(
+            "--from and --to are both {from}: they must differ"
+        )));
+    }
+    let ThresholdOptions {
+        tolerance,
+        ratio_rel_error,
+        scan_points,
+    } = *options;
+    if !(tolerance.is_finite() && tolerance > 0.0 && tolerance <= 0.1) {
+        return Err(bad(format!("tolerance {tolerance} must be in (0, 0.1]")));
+    }
+    if !(ratio_rel_error.is_finite() && ratio_rel_error >= 0.0) {
+        return Err(bad(format!(
+            "ratio relative error {ratio_rel_error} must be finite and >= 0"
+        )));
+    }
+    let (lo, hi) = (from.min(to), from.max(to));
+    let log = lo > 0.0 && hi / lo >= 10.0;
+    let spacing = if log { Spacing::Log } else { Spacing::Lin };
+    let n = match scan_points {
+        Some(n) if (3..=1001).contains(&n) => n,
+        Some(n) => return Err(bad(format!("scan points {n} must be in 3..=1001"))),
+        None if log => (4 * (hi / lo).log10().ceil() as usize + 1).clamp(9, 17),
+        None => 9,
+    };
+    let to_u = |x: f64| if log { x.ln() } else { x };
+    let from_u = |u: f64| if log { u.exp() } else { u };
+    let floor = tolerance * 1e-6 * lo.abs().max(hi.abs());
+    let tol_u = |u: f64| {
+        if log {
+            tolerance
+        } else {
+            (tolerance * u.abs()).max(floor)
+        }
+    };
+
+    let xs = spaced(lo, hi, spacing, n);
+    let evaluated: Vec<_> = xs.par_iter().map(|&x| guarded(|| eval(x))).collect();
+    let scan: Vec<ScanPoint> = xs
+        .iter()
+        .zip(&evaluated)
+        .map(|(&value, (status, design))| ScanPoint {
+            value,
+            status: status.word(),
+            detail: status.detail().map(str::to_owned),
+            pull_out_ratio: design.map(|d| d.pull_out_ratio),
+        })
+        .collect();
+    // (u, ln ratio) of the points with a ratio; ln 0 = -inf marks "does not close"
+    let known: Vec<(f64, f64)> = scan
+        .iter()
+        .filter_map(|p| p.pull_out_ratio.map(|r| (to_u(p.value), r.ln())))
+        .collect();
+    if known.is_empty() {
+        return Err(DesignError::ScanFailed {
+            parameter: field.to_owned(),
+            points: n,
+            value: scan[0].value,
+            detail: scan[0].detail.clone().unwrap_or_default(),
+        });
+    }
+
+    let g = |u: f64| -> Result<f64, String> {
+        let x = from_u(u);
+        match guarded(|| eval(x)) {
+            (_, Some(d)) => Ok(d.pull_out_ratio.ln()),
+            (s, None) => Err(format!(
+                "{} at {x:e}: {}",
+                s.word(),
+                s.detail().unwrap_or_default()
+            )),
+        }
+    };
+    let mut crossings = Vec::new();
+    let mut evaluations = n;
+    for w in known.windows(2) {
+        let ((ua, ga), (ub, gb)) = (w[0], w[1]);
+        if (ga < 0.0) == (gb < 0.0) {
+            continue;
+        }
+        let free_side = if ga < 0.0 {
+            FreeSide::Below
+        } else {
+            FreeSide::Above
+        };
+        let (found, detail) = match zeroin(ua, ga, ub, gb, tol_u, g, MAX_REFINE_EVALUATIONS) {
+            Ok(b) => (b, None),
+            Err((m, b)) => (b, Some(m)),
+        };
+        evaluations += found.evaluations;
+        let (u1, g1, u2, g2) = if found.b <= found.c {
+            (found.b, found.fb, found.c, found.fc)
+        } else {
+            (found.c, found.fc, found.b, found.fb)
+        };
+        let (x1, x2) = (from_u(u1), from_u(u2));
+        let half = 0.5 * (x2 - x1).abs();
+        let mid = from_u(0.5 * (u1 + u2));
+        let scan_slope = ((gb - ga) / (ub - ua)).abs();
+        let jump_limit = if scan_slope.is_finite() {
+            0.05f64.max(100.0 * scan_slope * (u2 - u1))
+        } else {
+            0.05
+        };
+        let kind = if detail.is_some() {
+            CrossingKind::Unresolved
+        } else if !(g1.is_finite() && g2.is_finite()) || (g2 - g1).abs() > jump_limit {
+            CrossingKind::Jump
+        } else {
+            CrossingKind::Continuous
+        };
+        let (critical_value, uncertainty, slope) = match kind {
+            CrossingKind::Continuous => {
+                let u = if g2 == g1 {
+                    found.b
+                } else {
+                    (u1 - g1 * (u2 - u1) / (g2 - g1)).clamp(u1, u2)
+                };
+                let x = from_u(u);
+                let du = u2 - u1;
+                // d ln ratio / d ln x
+                let s = if du > 0.0 {
+                    let d = (g2 - g1) / du;
+                    if log {
+                        d
+                    } else {
+                        d * x
+                    }
+                } else {
+                    f64::NAN
+                };
+                let tol_x = if log { tolerance * x.abs() } else { tol_u(x) };
+                let unc = if s.is_finite() && s != 0.0 {
+                    ratio_rel_error / s.abs() * x.abs() + tol_x
+                } else {
+                    tol_x.max(half)
+                };
+                (x, unc, s.is_finite().then_some(s))
+            }
+            _ => (mid, half, None),
+        };
+        crossings.push(Crossing {
+            critical_value,
+            free_side,
+            kind,
+            uncertainty,
+            bracket: [x1, x2],
+            ratio_at_bracket: [g1.exp(), g2.exp()],
+            slope,
+            evaluations: found.evaluations,
+            detail,
+        });
+    }
+
+    let ratio_of = |i: usize| scan[i].pull_out_ratio;
+    let (ratio_at_from, ratio_at_to) = if from < to {
+        (ratio_of(0), ratio_of(n - 1))
+    } else {
+        (ratio_of(n - 1), ratio_of(0))
+    };
+    let first = crossings.first();
+    let free_side = match first {
+        Some(c) => c.free_side,
+        None if known[0].1 < 0.0 => FreeSide::WholeRange,
+        None => FreeSide::Nowhere,
+    };
+    Ok(Threshold {
+        parameter: field.to_owned(),
+        critical_value: first.map(|c| c.critical_value),
+        free_side,
+        kind: first.map(|c| c.kind),
+        uncertainty: first.map(|c| c.uncertainty),
+        ratio_at_from,
+        ratio_at_to,
+        evaluations,
+        from,
+        to,
+        spacing,
+        tolerance,
+        ratio_rel_error,
+        crossings,
+        scan,
+    })
+}
+
+/// A bracket of a sign change: `b` the best end, `c` the other.
+#[derive(Debug, Clone, Copy)]
+struct Bracket {
+    b: f64,
+    fb: f64,
+    c: f64,
+    fc: f64,
+    evaluations: usize,
+}
+
+/// Brent-Dekker zero-in on a bracket `[a, b]` whose ends lie on different sides
+/// (`f < 0` against `f >= 0`). `-inf` is allowed as a value (a side without a magnitude):
+/// while any of the three kept values is infinite the step is a bisection. Stops when the
+/// bracket is narrower than `tol(b)`. A failed evaluation ends the search with the last
+/// valid bracket.
+fn zeroin(
+    a: f64,
+    fa: f64,
+    b: f64,
+    fb: f64,
+    tol: impl Fn(f64) -> f64,
+    mut f: impl FnMut(f64) -> Result<f64, String>,
+    max_evaluations: usize,
+) -> Result<Bracket, (String, Bracket)> {
+    let (mut a, mut fa, mut b, mut fb) = (a, fa, b, fb);
+    let (mut c, mut fc) = (a, fa);
+    let mut d = b - a;
+    let mut e = d;
+    let mut evaluations = 0;
+    loop {
+        if (fb < 0.0) == (fc < 0.0) {
+            c = a;
+            fc = fa;
+            d = b - a;
+            e = d;
+        }
+        if fc.abs() < fb.abs() {
+            a = b;
+            b = c;
+            c = a;
+            fa = fb;
+            fb = fc;
+            fc = fa;
+        }
+        let tol1 = 2.0 * f64::EPSILON * b.abs() + 0.5 * tol(b);
+        let xm = 0.5 * (c - b);
+        let here = Bracket {
+            b,
+            fb,
+            c,
+            fc,
+            evaluations,
+        };
+        if xm.abs() <= tol1 || fb == 0.0 {
+            return Ok(here);
+        }
+        if evaluations >= max_evaluations {
+            return Err((
+                format!("no convergence after {evaluations} evaluations"),
+                here,
+            ));
+        }
+        let finite = fa.is_finite() && fb.is_finite() && fc.is_finite();
+        if finite && e.abs() >= tol1 && fa.abs() > fb.abs() {
+            let s = fb / fa;
+            let (mut p, mut q);
+            if a == c {
+                p = 2.0 * xm * s;
+                q = 1.0 - s;
+            } else {
+                let qq = fa / fc;
+                let r = fb / fc;
+                p = s * (2.0 * xm * qq * (qq - r) - (b - a) * (r - 1.0));
+                q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
+            }
+            if p > 0.0 {
+                q = -q;
+            } else {
+                p = -p;
+            }
+            if 2.0 * p < (3.0 * xm * q - (tol1 * q).abs()).min((e * q).abs()) {
+                e = d;
+                d = p / q;
+            } else {
+                d = xm;
+                e = d;
+            }
+        } else {
+            d = xm;
+            e = d;
+        }
+        a = b;
+        fa = fb;
+        b += if d.abs() > tol1 { d } else { tol1.copysign(xm) };
+        evaluations += 1;
+        match f(b) {
+            Ok(v) => fb = v,
+            Err(m) => {
+                return Err((
+                    m,
+                    Bracket {
+                        b: a,
+                        fb: fa,
+                        c,
+                        fc,
+                        evaluations,
+                    },
+                ))
+            }
+        }
+    }
+}

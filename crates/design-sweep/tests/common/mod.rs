@@ -1,0 +1,48 @@
+//! Analytic evaluators with known stiction boundaries.
+#![allow(dead_code, missing_docs)]
+
+use design_sweep::{DesignPoint, PointError};
+
+/// A design point of the given ratio and restoring pressure.
+pub fn point(ratio: f64, restoring: f64) -> DesignPoint {
+    DesignPoint {
+        pull_out_ratio: ratio,
+        largest_pull_out_pa: ratio * restoring,
+        restoring_pressure_pa: restoring,
+        cycles_to_accommodation: Some(3),
+        first_sticking_cycle: (ratio > 1.0).then_some(1),
+        sticks: ratio > 1.0,
+        closes: true,
+    }
+}
+
+/// ratio = (x0 / x)^p: critical value x0, free above.
+pub fn power(x0: f64, p: f64) -> impl Fn(f64) -> Result<DesignPoint, PointError> + Sync {
+    move |x| Ok(point((x0 / x).powf(p), x))
+}
+
+/// 2-D: ratio = (x0/x)^2 * (y/y0): boundary y = y0 (x/x0)^2.
+pub fn product(values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
+    let (x, y) = (values[0].1, values[1].1);
+    Ok(point((2e3 / x).powi(2) * (y / 1e-8), x))
+}
+
+/// 1-D: ratio = (x0/x)^1.5 with a few failing points and one out of domain.
+pub fn flaky(values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
+    let x = values[0].1;
+    if (x - 500.0).abs() < 1e-9 {
+        return Err(PointError::Failed("solver did not converge".into()));
+    }
+    if x < 150.0 {
+        return Err(PointError::OutOfDomain(format!(
+            "switch.k_s = {x} below 150"
+        )));
+    }
+    if (x - 900.0).abs() < 1e-9 {
+        panic!("a bug in the evaluator");
+    }
+    if x > 1800.0 {
+        return Ok(DesignPoint::does_not_close(x));
+    }
+    Ok(point((1e3 / x).powf(1.5), x))
+}

@@ -1,0 +1,343 @@
+//! Maps: sharding and merging byte for byte, thread-count independence, statuses, CSV, JSON.
+
+mod common;
+
+use common::{flaky, power, product};
+use design_sweep::{
+    merge, run_map, DesignError, DesignPoint, Grid, Labels, Map, MapRequest, PointError, Shard,
+    Status, CSV_COLUMNS,
+};
+use serde_json::{json, Value};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+fn scene() -> Value {
+    json!({"switch": {"d0": 2e-6, "k_s": 1.234567890123e3}, "name": "paper", "surface": {"sigma_s": 3.1e-9}})
+}
+
+fn request(specs: &[&str], shard: Option<Shard>) -> MapRequest {
+    MapRequest {
+        scene: scene(),
+        grid: Grid::parse(specs).unwrap(),
+        accuracy: "balanced".into(),
+        shard,
+    }
+}
+
+const GRID_2D: [&str; 2] = [
+    "switch.k_s=3e2:3e4:log:13",
+    "surface.sigma_s=1e-9:9e-9:lin:7",
+];
+
+fn run(specs: &[&str], shard: Option<Shard>) -> Map {
+    run_map(request(specs, shard), product, |_, _| {})
+}
+
+fn labels() -> Labels {
+    Labels::new()
+        .with_unit("switch.k_s", "Pa/m")
+        .with_unit("surface.sigma_s", "m")
+}
+
+fn files(m: &Map) -> (String, String, String) {
+    (
+        m.to_csv().unwrap(),
+        m.to_json(),
+        m.to_svg(&labels()).unwrap(),
+    )
+}
+
+/// Shards as the CLI would have them: written as JSON and read back.
+fn shards(specs: &[&str], n: usize) -> Vec<(String, Map)> {
+    (1..=n)
+        .map(|k| {
+            let m = run(specs, Some(Shard::new(k, n).unwrap()));
+            let back = Map::from_json(&m.to_json()).unwrap();
+            assert_eq!(back, m, "JSON round trip of shard {k}/{n}");
+            (format!("maps/part-{k}"), back)
+        })
+        .collect()
+}
+
+#[test]
+fn merged_shards_equal_the_whole_map_byte_for_byte() {
+    for specs in [&GRID_2D[..], &["switch.k_s=1e2:1e5:log:17"][..]] {
+        let whole = files(&run(specs, None));
+        for n in [2, 3] {
+            let mut parts = shards(specs, n);
+            parts.reverse(); // order of the directories does not matter
+            let merged = merge(parts).unwrap();
+            assert_eq!(merged.shard(), None);
+            let m = files(&merged);
+            assert_eq!(m.0, whole.0, "map.csv, {n} shards");
+            assert_eq!(m.1, whole.1, "map.json, {n} shards");
+            assert_eq!(m.2, whole.2, "map.svg, {n} shards");
+        }
+    }
+}
+
+#[test]
+fn shard_info_appears_only_in_shards() {
+    let s = run(&GRID_2D, Some(Shard::new(2, 3).unwrap())).to_json();
+    let v: Value = serde_json::from_str(&s).unwrap();
+    assert_eq!(v["shard"], json!({"k": 2, "n": 3}));
+    let whole: Value = serde_json::from_str(&run(&GRID_2D, None).to_json()).unwrap();
+    assert!(whole.get("shard").is_none());
+}
+
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let in_pool = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| files(&run(&GRID_2D, None)))
+    };
+    let one = in_pool(1);
+    let two = in_pool(2);
+    assert_eq!(one, two);
+}
+
+#[test]
+fn failing_points_get_a_status_and_the_map_completes() {
+    let specs = ["switch.k_s=100:2000:lin:20"];
+    let calls = AtomicUsize::new(0);
+    let last = AtomicUsize::new(0);
+    let map = run_map(
+        request(&specs, None),
+        |v: &[(&str, f64)]| {
+            calls.fetch_add(1, Ordering::Relaxed);
+            flaky(v)
+        },
+        |done, total| {
+            assert_eq!(total, 20);
+            last.fetch_max(done, Ordering::Relaxed);
+        },
+    );
+    assert_eq!(calls.load(Ordering::Relaxed), 20);
+    assert_eq!(last.load(Ordering::Relaxed), 20);
+    assert_eq!(map.points().len(), 20);
+    let status = |x: f64| {
+        &map.points()
+            .iter()
+            .find(|p| p.values[0] == x)
+            .unwrap()
+            .status
+    };
+    assert!(matches!(status(100.0), Status::OutOfDomain(m) if m.contains("below 150")));
+    assert!(matches!(status(500.0), Status::Failed(m) if m.contains("did not converge")));
+    assert!(
+        matches!(status(900.0), Status::Failed(m) if m.contains("panicked") && m.contains("a bug"))
+    );
+    assert_eq!(*status(1900.0), Status::DoesNotClose);
+    assert_eq!(*status(1000.0), Status::Ok);
+    let s = map.summary();
+    assert_eq!(
+        (s.ok, s.does_not_close, s.out_of_domain, s.failed),
+        (15, 2, 1, 2)
+    );
+    // CSV: status words, empty cells for the failed point, no detail
+    let csv = map.to_csv().unwrap();
+    let row500 = csv.lines().find(|l| l.starts_with("5e2,")).unwrap();
+    assert_eq!(row500, "5e2,,,,,,,,failed");
+    assert!(!csv.contains("converge"));
+    // JSON: detail present, no null anywhere
+    let j = map.to_json();
+    assert!(j.contains("\"detail\": \"solver did not converge\""));
+    assert!(!j.contains("null") && !j.contains("NaN"));
+    // the 1-D crossing at 1e3 is found between grid points
+    let b = map.boundary_1d();
+    assert_eq!(b.len(), 1);
+    assert!(b[0].between[0] <= 1e3 && 1e3 <= b[0].between[1]);
+    // a failed or non-finite evaluator answer is a status, never a NaN in the output
+    let nan = run_map(
+        request(&specs, None),
+        |v: &[(&str, f64)]| -> Result<DesignPoint, PointError> {
+            let mut p = common::point(1.0, v[0].1);
+            p.pull_out_ratio = f64::NAN;
+            Ok(p)
+        },
+        |_, _| {},
+    );
+    assert!(nan
+        .points()
+        .iter()
+        .all(|p| matches!(&p.status, Status::Failed(m) if m.contains("pull_out_ratio that is not a number"))));
+    assert!(!nan.to_json().contains("NaN"));
+    serde_json::from_str::<Value>(&nan.to_json()).unwrap();
+}
+
+#[test]
+fn csv_header_and_rows_are_exact() {
+    let map = run(&GRID_2D, None);
+    let csv = map.to_csv().unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "switch.k_s,surface.sigma_s,pull_out_ratio,largest_pull_out_pa,restoring_pressure_pa,cycles_to_accommodation,first_sticking_cycle,sticks,closes,status"
+    );
+    assert_eq!(CSV_COLUMNS.len(), 8);
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), 13 * 7);
+    // first row: x = 300, y = 1e-9 -> ratio (2e3/300)^2 = 44.44..., sticks
+    let cells: Vec<&str> = rows[0].split(',').collect();
+    assert_eq!(cells[0], "3e2");
+    assert_eq!(cells[1], "1e-9");
+    let r: f64 = cells[2].parse().unwrap();
+    assert_eq!(
+        r,
+        map.points()[0].design.unwrap().pull_out_ratio,
+        "round trip"
+    );
+    assert_eq!(&cells[5..], ["3", "1", "true", "true", "ok"]);
+    // every number parses back bit for bit
+    for (row, p) in rows.iter().zip(map.points()) {
+        let c: Vec<&str> = row.split(',').collect();
+        assert_eq!(c[0].parse::<f64>().unwrap(), p.values[0]);
+        assert_eq!(c[1].parse::<f64>().unwrap(), p.values[1]);
+        assert_eq!(
+            c[3].parse::<f64>().unwrap(),
+            p.design.unwrap().largest_pull_out_pa
+        );
+    }
+}
+
+#[test]
+fn json_names_the_grid_and_scene() {
+    let map = run(&GRID_2D, None);
+    let v: Value = serde_json::from_str(&map.to_json()).unwrap();
+    assert_eq!(v["accuracy"], "balanced");
+    assert_eq!(v["scene"], scene());
+    let a = &v["grid"]["axes"][0];
+    assert_eq!(a["field"], "switch.k_s");
+    assert_eq!(a["spacing"], "log");
+    assert_eq!(a["n"], 13);
+    assert_eq!(a["values"].as_array().unwrap().len(), 13);
+    let p = &v["points"][8];
+    assert_eq!(p["index"], 8);
+    assert_eq!(
+        p["values"]["switch.k_s"].as_f64(),
+        Some(map.grid().values(8)[0])
+    );
+    assert_eq!(p["status"], "ok");
+    assert!(p.get("detail").is_none());
+    assert_eq!(Map::from_json(&map.to_json()).unwrap(), map);
+}
+
+fn merge_err(parts: Vec<(String, Map)>) -> String {
+    match merge(parts) {
+        Err(e @ DesignError::Merge { .. }) => e.to_string(),
+        other => panic!("expected a merge error, got {other:?}"),
+    }
+}
+
+#[test]
+fn merge_refuses_mismatched_missing_or_duplicate_shards() {
+    let specs = &GRID_2D[..];
+    // missing part
+    let mut parts = shards(specs, 3);
+    parts.remove(1);
+    let e = merge_err(parts);
+    assert!(e.contains("missing part(s) 2/3"), "{e}");
+
+    // duplicate part
+    let mut parts = shards(specs, 3);
+    let dup = ("maps/copy".to_string(), parts[0].1.clone());
+    parts.push(dup);
+    let e = merge_err(parts);
+    assert!(
+        e.contains("maps/copy") && e.contains("also in maps/part-1"),
+        "{e}"
+    );
+
+    // different scene
+    let mut parts = shards(specs, 2);
+    let mut r = request(specs, Some(Shard::new(2, 2).unwrap()));
+    r.scene["switch"]["d0"] = json!(3e-6);
+    parts[1].1 = run_map(r, product, |_, _| {});
+    let e = merge_err(parts);
+    assert!(e.contains("maps/part-2") && e.contains("/switch/d0"), "{e}");
+
+    // different grid
+    let mut parts = shards(specs, 2);
+    let other = [
+        "switch.k_s=3e2:3e4:log:13",
+        "surface.sigma_s=1e-9:9e-9:lin:8",
+    ];
+    parts[1].1 = run(&other, Some(Shard::new(2, 2).unwrap()));
+    let e = merge_err(parts);
+    assert!(e.contains("maps/part-2") && e.contains("grid"), "{e}");
+
+    // different accuracy
+    let mut parts = shards(specs, 2);
+    let mut r = request(specs, Some(Shard::new(2, 2).unwrap()));
+    r.accuracy = "fast".into();
+    parts[1].1 = run_map(r, product, |_, _| {});
+    let e = merge_err(parts);
+    assert!(e.contains("accuracy `fast`"), "{e}");
+
+    // inconsistent N
+    let mut parts = shards(specs, 2);
+    parts[1].1 = run(specs, Some(Shard::new(2, 3).unwrap()));
+    let e = merge_err(parts);
+    assert!(e.contains("maps/part-2") && e.contains("2/3"), "{e}");
+
+    // an unsharded map
+    let e = merge_err(vec![("maps/all".into(), run(specs, None))]);
+    assert!(e.contains("maps/all") && e.contains("unsharded"), "{e}");
+
+    // a huge N is reported, not enumerated
+    let big = run(specs, Some(Shard::new(1, 1_000_000_000_000).unwrap()));
+    let e = merge_err(vec![("maps/big".into(), big)]);
+    assert!(
+        e.contains("missing part(s) 2/1000000000000, ") && e.contains("and 999999999979 more"),
+        "{e}"
+    );
+
+    // nothing
+    assert!(merge(Vec::new()).is_err());
+}
+
+#[test]
+fn from_json_refuses_altered_maps() {
+    let m = run(&GRID_2D, Some(Shard::new(1, 2).unwrap()));
+    let mut v: Value = serde_json::from_str(&m.to_json()).unwrap();
+    v["points"][0]["index"] = json!(1); // belongs to shard 2/2
+    let e = Map::from_json(&v.to_string()).unwrap_err().to_string();
+    assert!(e.contains("does not belong to shard 1/2"), "{e}");
+    let e = Map::from_json("{\"format\": \"other\"}").unwrap_err();
+    assert!(matches!(e, DesignError::MapJson(_)));
+}
+
+#[test]
+fn a_shard_with_more_parts_than_points_is_empty_and_merges() {
+    let specs = ["switch.k_s=1e2:1e4:log:3"];
+    let parts: Vec<(String, Map)> = (1..=5)
+        .map(|k| {
+            (
+                format!("p{k}"),
+                run(&specs, Some(Shard::new(k, 5).unwrap())),
+            )
+        })
+        .collect();
+    assert!(parts[4].1.points().is_empty());
+    roxmltree::Document::parse(&parts[4].1.to_svg(&labels()).unwrap()).unwrap();
+    let empty_2d = run(&GRID_2D, Some(Shard::new(99, 99).unwrap()));
+    roxmltree::Document::parse(&empty_2d.to_svg(&labels()).unwrap()).unwrap();
+    let merged = merge(parts).unwrap();
+    assert_eq!(merged.to_json(), run(&specs, None).to_json());
+}
+
+#[test]
+fn power_law_evaluator_is_usable_as_a_map_evaluator() {
+    let f = power(1e3, 2.0);
+    let m = run_map(
+        request(&["switch.k_s=1e2:1e4:log:9"], None),
+        |v: &[(&str, f64)]| f(v[0].1),
+        |_, _| {},
+    );
+    let b = m.boundary_1d();
+    assert_eq!(b.len(), 1);
+    // log-ratio is linear in log x: interpolation is exact
+    assert!((b[0].value / 1e3 - 1.0).abs() < 1e-12, "{}", b[0].value);
+}

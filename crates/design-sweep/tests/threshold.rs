@@ -1,0 +1,235 @@
+//! Threshold searches on analytic ratios with known critical values.
+
+mod common;
+
+use common::{point, power};
+use design_sweep::{
+    threshold, threshold_table, CrossingKind, DesignError, DesignPoint, FreeSide, Labels,
+    PointError, Spacing, ThresholdOptions,
+};
+use serde_json::Value;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+fn opts(tolerance: f64) -> ThresholdOptions {
+    ThresholdOptions {
+        tolerance,
+        ratio_rel_error: 1e-6,
+        scan_points: None,
+    }
+}
+
+#[test]
+fn finds_a_power_law_threshold_on_a_log_range() {
+    for (p, tol) in [(1.0, 1e-6), (2.5, 1e-8), (0.3, 1e-4)] {
+        let t = threshold("switch.k_s", 1e1, 1e6, power(3.3e3, p), &opts(tol)).unwrap();
+        assert_eq!(t.spacing, Spacing::Log);
+        assert_eq!(t.crossings.len(), 1);
+        let c = t.critical_value.unwrap();
+        assert!((c / 3.3e3 - 1.0).abs() <= tol, "p = {p}: {c} (tol {tol})");
+        assert_eq!(t.free_side, FreeSide::Above);
+        assert_eq!(t.kind, Some(CrossingKind::Continuous));
+        // the slope of ln ratio in ln value is -p
+        let s = t.crossings[0].slope.unwrap();
+        assert!((s + p).abs() < 1e-3 * p, "slope {s}");
+        // uncertainty = eps/|slope| x + tol x
+        let u = t.uncertainty.unwrap();
+        let want = 1e-6 / p * c + tol * c;
+        assert!((u / want - 1.0).abs() < 1e-3, "{u} vs {want}");
+        assert!(t.ratio_at_from.unwrap() > 1.0 && t.ratio_at_to.unwrap() < 1.0);
+        assert!(t.evaluations > t.scan.len() && t.evaluations < t.scan.len() + 40);
+    }
+}
+
+#[test]
+fn finds_a_threshold_on_a_lin_range_and_the_free_side_below() {
+    // ratio = x / 0.37 rises with x: free below 0.37
+    let f = |x: f64| -> Result<DesignPoint, PointError> { Ok(point(x / 0.37, 1.0)) };
+    let t = threshold("surface.sigma_s", 0.1, 0.9, f, &opts(1e-7)).unwrap();
+    assert_eq!(t.spacing, Spacing::Lin);
+    let c = t.critical_value.unwrap();
+    assert!((c / 0.37 - 1.0).abs() <= 1e-7, "{c}");
+    assert_eq!(t.free_side, FreeSide::Below);
+    // from > to: the same answer, end ratios swapped
+    let r = threshold("surface.sigma_s", 0.9, 0.1, f, &opts(1e-7)).unwrap();
+    assert_eq!(r.critical_value, t.critical_value);
+    assert_eq!(r.ratio_at_from, t.ratio_at_to);
+    assert_eq!(r.free_side, FreeSide::Below);
+}
+
+#[test]
+fn no_crossing_is_an_answer_not_an_error() {
+    let t = threshold("switch.k_s", 1e4, 1e6, power(3e3, 2.0), &opts(1e-6)).unwrap();
+    assert!(t.crossings.is_empty());
+    assert_eq!(t.critical_value, None);
+    assert_eq!(t.free_side, FreeSide::WholeRange);
+    assert_eq!(t.evaluations, t.scan.len());
+    let v: Value = serde_json::from_str(&t.to_json()).unwrap();
+    assert_eq!(v["free_side"], "whole_range");
+    assert!(v.get("critical_value").is_none());
+    assert!(v["ratio_at_from"].as_f64().unwrap() < 1.0);
+    let t = threshold("switch.k_s", 10.0, 100.0, power(3e3, 2.0), &opts(1e-6)).unwrap();
+    assert_eq!(t.free_side, FreeSide::Nowhere);
+    assert!(
+        threshold_table(&t, &Labels::new()).contains("sticks (ratio >= 1) over the whole range")
+    );
+}
+
+#[test]
+fn reports_two_crossings() {
+    // a valley: ratio = 0.25 (ln x - ln 1e3)^2 + 0.5 in decades; crosses 1 at 1e3 * 10^(+-sqrt 2)
+    let f = |x: f64| -> Result<DesignPoint, PointError> {
+        let d = (x / 1e3).log10();
+        Ok(point(0.25 * d * d + 0.5, 1.0))
+    };
+    let t = threshold("switch.k_s", 1.0, 1e6, f, &opts(1e-8)).unwrap();
+    assert_eq!(t.crossings.len(), 2);
+    let r2 = 2f64.sqrt();
+    let want = [1e3 * 10f64.powf(-r2), 1e3 * 10f64.powf(r2)];
+    for (c, w) in t.crossings.iter().zip(want) {
+        assert!(
+            (c.critical_value / w - 1.0).abs() < 1e-8,
+            "{} vs {w}",
+            c.critical_value
+        );
+    }
+    assert_eq!(t.crossings[0].free_side, FreeSide::Above);
+    assert_eq!(t.crossings[1].free_side, FreeSide::Below);
+    assert_eq!(t.critical_value, Some(t.crossings[0].critical_value));
+    let v: Value = serde_json::from_str(&t.to_json()).unwrap();
+    for key in [
+        "parameter",
+        "critical_value",
+        "free_side",
+        "ratio_at_from",
+        "ratio_at_to",
+        "evaluations",
+        "uncertainty",
+        "kind",
+        "crossings",
+    ] {
+        assert!(v.get(key).is_some(), "{key}");
+    }
+    assert_eq!(v["crossings"].as_array().unwrap().len(), 2);
+    assert!(!t.to_json().contains("null"));
+    let table = threshold_table(&t, &Labels::new().with_unit("switch.k_s", "Pa/m"));
+    assert!(
+        table.contains("crossings (2)") && table.contains("Pa/m"),
+        "{table}"
+    );
+}
+
+#[test]
+fn a_jump_from_not_closing_to_sticking_is_located_by_bisection() {
+    // below 2.5e3 the switch closes and sticks with ratio 1.8; above it does not close
+    let f = |x: f64| -> Result<DesignPoint, PointError> {
+        if x > 2.5e3 {
+            Ok(DesignPoint::does_not_close(x))
+        } else {
+            Ok(point(1.8, x))
+        }
+    };
+    let t = threshold("switch.voltage", 1e3, 1e4, f, &opts(1e-6)).unwrap();
+    assert_eq!(t.crossings.len(), 1);
+    let c = &t.crossings[0];
+    assert_eq!(c.kind, CrossingKind::Jump);
+    assert_eq!(c.free_side, FreeSide::Above);
+    assert!(c.bracket[0] <= 2.5e3 && 2.5e3 <= c.bracket[1]);
+    assert!(
+        (c.bracket[1] / c.bracket[0] - 1.0) <= 1.01e-6,
+        "{:?}",
+        c.bracket
+    );
+    assert!((c.critical_value - 2.5e3).abs() <= c.uncertainty);
+    assert!((c.ratio_at_bracket[0] - 1.8).abs() < 1e-12 && c.ratio_at_bracket[1] == 0.0);
+    assert!(c.slope.is_none());
+    // bisection from a 1/8-decade scan bracket to 1e-6 in ln: about 18 halvings
+    assert!(c.evaluations <= 22, "{}", c.evaluations);
+
+    // a finite jump (0.5 -> 2) is a jump too, found to the tolerance
+    let g = |x: f64| -> Result<DesignPoint, PointError> {
+        Ok(point(if x < 0.61 { 0.5 } else { 2.0 }, 1.0))
+    };
+    let t = threshold("surface.w", 0.0, 1.0, g, &opts(1e-6)).unwrap();
+    let c = &t.crossings[0];
+    assert_eq!(c.kind, CrossingKind::Jump);
+    assert_eq!(c.free_side, FreeSide::Below);
+    assert!(
+        (c.critical_value - 0.61).abs() <= 1e-6,
+        "{}",
+        c.critical_value
+    );
+    assert!(c.evaluations <= 40, "{}", c.evaluations);
+}
+
+#[test]
+fn failing_scan_points_are_reported_and_the_scan_goes_on() {
+    let calls = AtomicUsize::new(0);
+    let f = |x: f64| -> Result<DesignPoint, PointError> {
+        calls.fetch_add(1, Ordering::Relaxed);
+        // scan points are 10^(1 + 5i/16): 86.6 fails, 4.87e5 and 1e6 are out of domain
+        if x > 4e5 {
+            Err(PointError::OutOfDomain(format!("k_s = {x} too stiff")))
+        } else if (80.0..100.0).contains(&x) {
+            Err(PointError::Failed("no convergence".into()))
+        } else {
+            power(3e3, 2.0)(x)
+        }
+    };
+    let t = threshold("switch.k_s", 1e1, 1e6, f, &opts(1e-6)).unwrap();
+    assert_eq!(calls.load(Ordering::Relaxed), t.evaluations);
+    assert!((t.critical_value.unwrap() / 3e3 - 1.0).abs() < 1e-6);
+    let failed: Vec<_> = t.failed_points().collect();
+    assert_eq!(t.scan.len(), 17);
+    assert_eq!(failed.len(), 3, "{failed:?}");
+    assert!(failed.iter().any(|p| p.status == "failed"));
+    assert!(failed.iter().any(|p| p.status == "out_of_domain"));
+    assert_eq!(t.ratio_at_to, None);
+    let json = t.to_json();
+    assert!(json.contains("too stiff") && !json.contains("null"));
+    assert!(threshold_table(&t, &Labels::new()).contains("failed scan points (3)"));
+}
+
+#[test]
+fn a_failure_while_refining_leaves_an_unresolved_crossing() {
+    let f = |x: f64| -> Result<DesignPoint, PointError> {
+        if (2.9e3..3.2e3).contains(&x) {
+            Err("solver diverged".into())
+        } else {
+            power(3e3, 1.0)(x)
+        }
+    };
+    let t = threshold("switch.k_s", 1e2, 1e5, f, &opts(1e-6)).unwrap();
+    let c = &t.crossings[0];
+    assert_eq!(c.kind, CrossingKind::Unresolved);
+    assert!(c.detail.as_deref().unwrap().contains("solver diverged"));
+    assert!(c.bracket[0] <= 3e3 && 3e3 <= c.bracket[1]);
+    assert!((c.critical_value - 3e3).abs() <= c.uncertainty);
+}
+
+#[test]
+fn invalid_input_and_all_failed_scans_are_errors() {
+    let f = power(1.0, 1.0);
+    let bad = |r: Result<_, DesignError>| r.unwrap_err().to_string();
+    assert!(bad(threshold("switch.k_s", 1.0, 1.0, &f, &opts(1e-6))).contains("both 1"));
+    assert!(bad(threshold("switch.k_s", 1.0, f64::NAN, &f, &opts(1e-6))).contains("finite"));
+    assert!(bad(threshold("switch.k_s", 1.0, 2.0, &f, &opts(0.0))).contains("tolerance"));
+    assert!(bad(threshold("k_s", 1.0, 2.0, &f, &opts(1e-6))).contains("section.key"));
+    let fail = |_x: f64| -> Result<DesignPoint, PointError> { Err("always".into()) };
+    let e = threshold("switch.k_s", 1.0, 2.0, fail, &opts(1e-6)).unwrap_err();
+    assert!(
+        matches!(e, DesignError::ScanFailed { points: 9, .. }),
+        "{e}"
+    );
+}
+
+#[test]
+fn threshold_does_not_depend_on_the_thread_count() {
+    let run = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| threshold("switch.k_s", 1e1, 1e6, power(3.3e3, 1.7), &opts(1e-9)).unwrap())
+    };
+    assert_eq!(run(1), run(2));
+}
