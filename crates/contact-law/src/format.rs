@@ -15,7 +15,7 @@ pub const FORMAT_NAME: &str = "stiction-contact-law";
 /// The value of the `version` key this crate reads and writes.
 pub const FORMAT_VERSION: u64 = 1;
 /// Largest file [`ContactLaw::from_path`] reads (bytes): files are untrusted input.
-pub const MAX_FILE_BYTES: u64 = 1 << 29;
+pub const MAX_FILE_BYTES: u64 = 1 << 28;
 
 /// Rule name of the interpolation in d.
 pub const RULE_IN_D: &str = "steffen-1990";
