@@ -55,7 +55,7 @@ fn law_file() -> &'static (PathBuf, ContactLaw) {
     LAW.get_or_init(|| {
         let dir = tmp();
         std::fs::create_dir_all(&dir).unwrap();
-        let file = dir.join(format!("law-{}.json", std::process::id()));
+        let file = dir.join("law.json");
         let law = tabulate(&ToyLaw::default(), &Tabulation::adaptive(1.5e-9, 15e-9)).unwrap();
         law.write_json(&file).unwrap();
         let back = ContactLaw::from_path(&file).unwrap();
@@ -71,7 +71,7 @@ fn compile_driver() -> PathBuf {
 
 fn compile() -> PathBuf {
     let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let out = tmp().join(format!("driver-{}", std::process::id()));
+    let out = tmp().join("driver");
     std::fs::create_dir_all(tmp()).unwrap();
     let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
     let lib = static_lib();
@@ -382,7 +382,7 @@ fn the_c_program_reports_a_corrupted_law_file_by_its_json_path() {
     let (file, _) = law_file();
     let exe = compile_driver();
     let text = std::fs::read_to_string(file).unwrap();
-    let bad = tmp().join(format!("bad-{}.json", std::process::id()));
+    let bad = tmp().join("bad-version.json");
     std::fs::write(&bad, text.replacen("\"version\": 1", "\"version\": 2", 1)).unwrap();
     let mut child = Command::new(&exe)
         .arg(&bad)
@@ -448,7 +448,7 @@ fn the_header_declares_exactly_the_exported_functions() {
 fn the_header_compiles_as_cpp() {
     let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let cxx = std::env::var("CXX").unwrap_or_else(|_| "c++".into());
-    let src = tmp().join(format!("header-{}.cpp", std::process::id()));
+    let src = tmp().join("header.cpp");
     std::fs::create_dir_all(tmp()).unwrap();
     std::fs::write(
         &src,

@@ -10,7 +10,7 @@ use serde_json::{json, Value};
 
 fn tmpdir() -> std::path::PathBuf {
     let d = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("contact-law-{}", std::process::id()));
+        .join("contact-law");
     std::fs::create_dir_all(&d).unwrap();
     d
 }
