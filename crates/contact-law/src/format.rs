@@ -33,13 +33,15 @@ interpolation of each curve in x = d - d_min (in d for the virgin envelope): C1,
 every node, no overshoot, monotone where the nodes are; the tangent is its derivative; \
 the pressure is 0 beyond the last node (the reach)";
 const DESC_IN_D_MIN: &str = "between neighbouring branches d_k <= d_min <= d_k+1 linear \
-in d_min at fixed x = d - d_min, plus the continuity correction c (1 - x/X), \
-c = p_V(d_min) minus the blended value at x = 0, X the larger reach in x of the two, so \
-that every branch starts on the virgin envelope; above the last branch the same blend \
-towards the zero law at the virgin reach; below the first branch an error";
+in d_min at fixed x = d - d_min, plus the continuity correction c (1 - x/L)^2 for x < L, \
+c = p_V(d_min) minus the blended value at x = 0, L the blended fade length of the two \
+branches (the first node where a branch has made half of its largest change from its start \
+value), so that every branch starts on the virgin envelope; above the last branch the same \
+blend towards the zero law at the virgin reach; below the first branch an error";
 const METRIC: &str = "|p_interp - p_direct| / (|p_direct| + |p_pull_out(d_min)|), \
 p_pull_out the most tensile retract pressure of the history d_min (for the virgin \
-envelope at d: d_min = d, |p_pull_out| linear between the tabulated branches)";
+envelope at d: d_min = d, |p_pull_out| linear between the tabulated branches and constant \
+beyond them)";
 const METHOD: &str = "direct evaluation of the source against the law read back from \
 its data at: the midpoint of every interval of every curve; the mid d_min of every pair \
 of neighbouring branches, at the midpoints of the union of their nodes (at most 64 per \

@@ -10,9 +10,11 @@
 //!    by more than `tol (|p| + |p_pull_out(d_min)|)`; the most tensile point of the approach
 //!    branches and of the envelope is located by golden section and added as a node;
 //! 2. the d_min grid (unless the user gives one) starts uniform with 5 nodes and an
-//!    interval is bisected while the law interpolated at its mid d_min misses the directly
-//!    computed branches of that d_min by more than the tolerance, at the union of the
-//!    neighbours' nodes and the pull-out;
+//!    interval is bisected while the rule in d_min (linear at fixed x, with the continuity
+//!    correction) applied to the two neighbouring branches misses the directly computed
+//!    branch of the mid d_min by more than the tolerance, at the union of the neighbours'
+//!    nodes (at most 64 per branch) and the mid pull-out; the neighbours are taken from the
+//!    source there, so that the check sees the error of the rule in d_min alone;
 //! 3. the law is assembled from its data exactly as a reader would, and its error is
 //!    measured against the source at points off every grid ([`crate::MeasuredError`]).
 //!

@@ -9,8 +9,7 @@ use proptest::prelude::*;
 use serde_json::{json, Value};
 
 fn tmpdir() -> std::path::PathBuf {
-    let d = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join("contact-law");
+    let d = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("contact-law");
     std::fs::create_dir_all(&d).unwrap();
     d
 }
