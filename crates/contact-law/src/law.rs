@@ -37,8 +37,10 @@ pub struct Point {
 /// The history and path of one point of a surface, updated by [`ContactLaw::pressure`].
 ///
 /// Plain data, so that an FE code can store it in its own state variables (see the C
-/// struct `scl_state`). [`State::VIRGIN`] is a surface never loaded.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// struct `scl_state`). [`State::VIRGIN`] is a surface never loaded. Not serializable on
+/// purpose: its infinite fields would become JSON `null`; store the fields yourself or use
+/// the C struct, whose numbers are always finite.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct State {
     /// Deepest separation reached (m); `+inf` while virgin.
     pub d_min: f64,
