@@ -1,0 +1,115 @@
+/*
+ * stiction_contact_law.h - C ABI of the Rust crate contact-law (crate contact-law-capi).
+ *
+ * The adhesive-contact law p(d; d_min, path) of a rough surface, tabulated in law.json,
+ * for finite-element codes. SI units: separations d in m, pressure in Pa (compressive
+ * positive, adhesive negative), tangent dp/dd in Pa/m. d is measured from the mean plane
+ * of asperity heights to the counter-flat: smaller d is deeper contact.
+ *
+ * Every function returns an SCL_* status (0 = success) and writes its outputs only on
+ * success; a null required pointer gives SCL_ERR_NULL. scl_last_error() explains the last
+ * failure on the calling thread. A loaded law is immutable and may be evaluated from
+ * several threads at once, each with its own scl_state.
+ *
+ * Hand-written; the tests of contact-law-capi check it against the library's exports,
+ * constants and struct layout. Documentation: docs/contact-law.md.
+ */
+#ifndef STICTION_CONTACT_LAW_H
+#define STICTION_CONTACT_LAW_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SCL_ABI_VERSION 1
+
+/* Status codes. */
+enum scl_status {
+    SCL_OK = 0,
+    SCL_ERR_NULL = 1,         /* a required pointer argument was null */
+    SCL_ERR_IO = 2,           /* the file could not be read (missing, unreadable, too large) */
+    SCL_ERR_FORMAT = 3,       /* not a valid law.json (syntax, format, version, a value) */
+    SCL_ERR_OUT_OF_RANGE = 4, /* separation or history outside the tabulated range */
+    SCL_ERR_INVALID = 5,      /* non-finite d, unknown path, inconsistent state */
+    SCL_ERR_INTERNAL = 6      /* internal error (caught panic): please report */
+};
+
+/* scl_state.path */
+enum scl_path {
+    SCL_PATH_APPROACH = 0, /* coming from far or reloading */
+    SCL_PATH_RETRACT = 1   /* retracting after a reversal */
+};
+
+/* scl_state.flags bits */
+#define SCL_STATE_TOUCHED 1 /* loaded: d_min, last_d and path are valid */
+#define SCL_STATE_TURNED 2  /* d_turn is valid: the current path began at a reversal */
+
+/* Opaque handle of a loaded law. */
+typedef struct scl_law scl_law;
+
+/*
+ * History of one point of the surface, owned by the caller. All-zero bytes is a virgin
+ * surface (no call needed for zero-initialised storage); every stored number is finite.
+ * In an implicit FE code evaluate with a copy of the state of the last converged
+ * increment and keep the updated copy only when the increment converges.
+ */
+typedef struct scl_state {
+    double d_min;  /* deepest separation reached (m), valid with SCL_STATE_TOUCHED */
+    double last_d; /* separation of the previous call (m), valid with SCL_STATE_TOUCHED */
+    double d_turn; /* separation of the last reversal (m), valid with SCL_STATE_TURNED */
+    int32_t path;  /* SCL_PATH_APPROACH or SCL_PATH_RETRACT */
+    int32_t flags; /* SCL_STATE_TOUCHED | SCL_STATE_TURNED */
+} scl_state;
+
+/* Reads and validates law.json; *out receives a handle to free with scl_law_free. */
+int scl_law_load(const char *path, scl_law **out);
+
+/* Frees a handle; NULL is a no-op. */
+void scl_law_free(scl_law *law);
+
+/* Sets *state to a virgin surface (all zero); NULL is a no-op. */
+void scl_state_init(scl_state *state);
+
+/*
+ * Pressure and tangent at separation d (m), updating *state:
+ *  - d < d_min: the approach deepens the history (d_min = d), virgin envelope;
+ *  - otherwise a reversal switches the path (approach and d > last d: retract;
+ *    retract and d < last d: approach), then that branch of the current d_min.
+ */
+int scl_law_eval(const scl_law *law, double d, scl_state *state, double *pressure,
+                 double *tangent);
+
+/*
+ * Stateless: branch `path` of history d_min (INFINITY for a virgin surface) at d; when
+ * d < d_min the history deepens and the virgin envelope applies. d_min_out (may be NULL)
+ * receives the history after the call.
+ */
+int scl_law_eval_stateless(const scl_law *law, double d, double d_min, int32_t path,
+                           double *pressure, double *tangent, double *d_min_out);
+
+/* The tabulated d_min range (m); deeper histories are out of range. */
+int scl_law_d_min_range(const scl_law *law, double *lo, double *hi);
+
+/* *exact = 1 if the one-number history is exact for *state, 0 after a partial reload or a
+ * partial retraction (the law then follows the branch of d_min). */
+int scl_law_history_exact(const scl_law *law, const scl_state *state, int *exact);
+
+/* Message of the last failed call on this thread ("" if none); valid until the next
+ * failing call on this thread. */
+const char *scl_last_error(void);
+
+/* Copies that message into buf (at most len bytes with the NUL) and returns its full
+ * length without the NUL. */
+size_t scl_last_error_copy(char *buf, size_t len);
+
+/* SCL_ABI_VERSION of the library: compare with the header's at start-up. */
+int scl_abi_version(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* STICTION_CONTACT_LAW_H */
