@@ -17,7 +17,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     let pair = Pair::new(Material::new(paper::RU)?, None, paper::RADIUS)?;
     let cal = Calibrator::new(
         EtsionKadin::new(&pair, YieldModulus::AsPrinted)?,
-        MaugisKim::new(DugdaleParams::for_pair(&pair, paper::WORK_OF_ADHESION, paper::Z0))?,
+        MaugisKim::new(DugdaleParams::for_pair(
+            &pair,
+            paper::WORK_OF_ADHESION,
+            paper::Z0,
+        ))?,
     );
     let truth = EffectiveRadiusFit::new([0.3, 0.5, 0.12], [8.0, 12.0, 4.0])?;
     let spec = SynthSpec {
@@ -46,7 +50,13 @@ fn main() -> Result<(), Box<dyn Error>> {
     println!("{}", serde_json::to_string_pretty(&report)?);
 
     // one delta_max only (omega = 20): b1, b2, b3 cannot be separated
-    let one = cal.synthesize(truth, &SynthSpec { delta_max: vec![20.0 * cal.delta_cp()], ..spec })?;
+    let one = cal.synthesize(
+        truth,
+        &SynthSpec {
+            delta_max: vec![20.0 * cal.delta_cp()],
+            ..spec
+        },
+    )?;
     println!("{}", cal.fit(&one, &FitOptions::default())?.to_table());
     Ok(())
 }
@@ -59,14 +69,26 @@ fn monte_carlo(
     spec: &SynthSpec,
     runs: u64,
 ) -> Result<(), Box<dyn Error>> {
-    let clean = cal.synthesize(truth, &SynthSpec { noise: 0.0, ..spec.clone() })?;
+    let clean = cal.synthesize(
+        truth,
+        &SynthSpec {
+            noise: 0.0,
+            ..spec.clone()
+        },
+    )?;
     let mut est = Vec::new();
     let mut se = Vec::new();
     let mut worst: f64 = 0.0;
     let (mut it_min, mut it_max) = (usize::MAX, 0);
     let t0 = std::time::Instant::now();
     for seed in 0..runs {
-        let data = cal.synthesize(truth, &SynthSpec { seed, ..spec.clone() })?;
+        let data = cal.synthesize(
+            truth,
+            &SynthSpec {
+                seed,
+                ..spec.clone()
+            },
+        )?;
         let rep = cal.fit(&data, &FitOptions::default())?;
         if !rep.converged {
             println!("seed {seed}: not converged ({:?})", rep.stop);
@@ -75,14 +97,22 @@ fn monte_carlo(
         it_max = it_max.max(rep.iterations);
         let pred = cal.predict(rep.fit(), &clean)?;
         for (c, p) in clean.curves().iter().zip(&pred) {
-            let ss: f64 = c.points.iter().zip(p).map(|(a, f)| (a.force - f).powi(2)).sum();
+            let ss: f64 = c
+                .points
+                .iter()
+                .zip(p)
+                .map(|(a, f)| (a.force - f).powi(2))
+                .sum();
             worst = worst.max((ss / p.len() as f64).sqrt() / c.peak_force());
         }
         est.push(Constant::ALL.map(|c| c.get(&rep.fit())));
         se.push(Constant::ALL.map(|c| rep.standard_errors.get(c).unwrap_or(f64::NAN)));
     }
     let dt = t0.elapsed().as_secs_f64() / runs as f64;
-    println!("{runs} fits, {:.1} ms each, {it_min}..{it_max} iterations", dt * 1e3);
+    println!(
+        "{runs} fits, {:.1} ms each, {it_min}..{it_max} iterations",
+        dt * 1e3
+    );
     println!("constant  truth     mean      scatter     mean SE   scatter/SE  within 3 SE");
     let n = runs as f64;
     for c in Constant::ALL {
@@ -106,6 +136,9 @@ fn monte_carlo(
             inside
         );
     }
-    println!("worst refit curve RMS against the noiseless truth: {:.2e} of its peak", worst);
+    println!(
+        "worst refit curve RMS against the noiseless truth: {:.2e} of its peak",
+        worst
+    );
     Ok(())
 }

@@ -66,7 +66,9 @@ pub(crate) fn to_array(fit: &EffectiveRadiusFit) -> [f64; 6] {
 }
 
 /// The validated fit of [a1, a2, a3, b1, b2, b3].
-pub(crate) fn from_array(t: &[f64; 6]) -> Result<EffectiveRadiusFit, asperity_plastic::PlasticError> {
+pub(crate) fn from_array(
+    t: &[f64; 6],
+) -> Result<EffectiveRadiusFit, asperity_plastic::PlasticError> {
     EffectiveRadiusFit::new([t[0], t[1], t[2]], [t[3], t[4], t[5]])
 }
 

@@ -370,7 +370,11 @@ impl FeData {
         for c in &self.curves {
             for p in &c.points {
                 // writing to a String cannot fail
-                let _ = writeln!(s, "{:e},{:e},{:e},{}", c.delta_max, p.delta, p.force, c.branch);
+                let _ = writeln!(
+                    s,
+                    "{:e},{:e},{:e},{}",
+                    c.delta_max, p.delta, p.force, c.branch
+                );
             }
         }
         s
@@ -396,7 +400,8 @@ mod tests {
 
     #[test]
     fn any_column_order_comments_quotes_and_extra_columns() {
-        let text = "\u{feff}# exported by FE\n\n\"branch\", force_n ,time_s,delta_m,delta_max_m\r\n\
+        let text =
+            "\u{feff}# exported by FE\n\n\"branch\", force_n ,time_s,delta_m,delta_max_m\r\n\
                     loading,1e-3,0.1,1e-8,2e-8\r\n\
                     LOADING,3e-3,0.2,2e-8,2e-8\n\
                     # a comment between rows\n\
@@ -406,7 +411,10 @@ mod tests {
         assert_eq!(d.curves().len(), 2);
         assert_eq!(d.ignored_columns(), ["time_s"]);
         let l = &d.curves()[0];
-        assert_eq!((l.branch, l.points.len(), l.points[0].line), (Branch::Loading, 2, 4));
+        assert_eq!(
+            (l.branch, l.points.len(), l.points[0].line),
+            (Branch::Loading, 2, 4)
+        );
         assert_eq!(l.points[1].force, 3e-3);
         assert_eq!(d.curves()[1].points[1].line, 8);
         assert_eq!(d.curves()[1].peak_force(), 2e-3);
@@ -435,28 +443,90 @@ mod tests {
         let cases: Vec<(String, usize, &str)> = vec![
             ("".into(), 1, "header"),
             ("# only a comment\n".into(), 1, "header"),
-            ("delta_max_m,delta_m,branch\n1,1,loading\n".into(), 1, "force_n"),
-            ("delta_max_m,delta_m,force_n,branch,delta_m\n".into(), 1, "delta_m"),
-            (format!("{HEADER}2e-8,1e-8,abc,loading\n2e-8,1e-8,1,loading\n"), 2, "force_n"),
-            (format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,,1,loading\n"), 3, "delta_m"),
-            (format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,NaN,1,loading\n"), 3, "delta_m"),
-            (format!("{HEADER}2e-8,1e-8,1,loading\ninf,1e-8,1,loading\n"), 3, "delta_max_m"),
-            (format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,1e-8,1,reloading\n"), 3, "branch"),
-            (format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,1e-8,1\n"), 3, "branch"),
-            (format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,1e-8,1,loading,7\n"), 3, "column 5"),
-            (format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,2.1e-8,1,loading\n"), 3, "delta_m"),
-            (format!("{HEADER}0,0,1,loading\n0,0,1,loading\n"), 2, "delta_max_m"),
+            (
+                "delta_max_m,delta_m,branch\n1,1,loading\n".into(),
+                1,
+                "force_n",
+            ),
+            (
+                "delta_max_m,delta_m,force_n,branch,delta_m\n".into(),
+                1,
+                "delta_m",
+            ),
+            (
+                format!("{HEADER}2e-8,1e-8,abc,loading\n2e-8,1e-8,1,loading\n"),
+                2,
+                "force_n",
+            ),
+            (
+                format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,,1,loading\n"),
+                3,
+                "delta_m",
+            ),
+            (
+                format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,NaN,1,loading\n"),
+                3,
+                "delta_m",
+            ),
+            (
+                format!("{HEADER}2e-8,1e-8,1,loading\ninf,1e-8,1,loading\n"),
+                3,
+                "delta_max_m",
+            ),
+            (
+                format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,1e-8,1,reloading\n"),
+                3,
+                "branch",
+            ),
+            (
+                format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,1e-8,1\n"),
+                3,
+                "branch",
+            ),
+            (
+                format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,1e-8,1,loading,7\n"),
+                3,
+                "column 5",
+            ),
+            (
+                format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,2.1e-8,1,loading\n"),
+                3,
+                "delta_m",
+            ),
+            (
+                format!("{HEADER}0,0,1,loading\n0,0,1,loading\n"),
+                2,
+                "delta_max_m",
+            ),
             (format!("{HEADER}-1e-8,-2e-8,1,loading\n"), 2, "delta_max_m"),
-            (format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,2e-8,1,loading\n2e-8,1e-8,1,unloading\n"), 4, "delta_max_m"),
-            (format!("{HEADER}2e-8,1e-8,0,loading\n2e-8,2e-8,-0,loading\n"), 2, "force_n"),
+            (
+                format!(
+                    "{HEADER}2e-8,1e-8,1,loading\n2e-8,2e-8,1,loading\n2e-8,1e-8,1,unloading\n"
+                ),
+                4,
+                "delta_max_m",
+            ),
+            (
+                format!("{HEADER}2e-8,1e-8,0,loading\n2e-8,2e-8,-0,loading\n"),
+                2,
+                "force_n",
+            ),
         ];
         for (text, line, column) in cases {
             let (l, c, p) = err(&text);
             assert_eq!((l, c.as_str()), (line, column), "{text:?}: {p}");
         }
         // delta may exceed delta_max by rounding only
-        assert!(FeData::parse_csv(&format!("{HEADER}2e-8,2.00000000001e-8,1,loading\n2e-8,1e-8,1,loading\n")).is_ok());
-        let (_, _, p) = err(&format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,1e-8,1,Loadin\n"));
-        assert_eq!(p.to_string(), "unknown branch \"Loadin\" (expected loading or unloading)");
+        assert!(FeData::parse_csv(&format!(
+            "{HEADER}2e-8,2.00000000001e-8,1,loading\n2e-8,1e-8,1,loading\n"
+        ))
+        .is_ok());
+        let (_, _, p) = err(&format!(
+            "{HEADER}2e-8,1e-8,1,loading\n2e-8,1e-8,1,Loadin\n"
+        ));
+        assert_eq!(
+            p.to_string(),
+            "unknown branch \"Loadin\" (expected loading or unloading)"
+        );
     }
 }

@@ -73,7 +73,9 @@ pub enum CalibError {
         source: LawError,
     },
     /// The forward model failed on the overlay grid (no data line involved).
-    #[error("model failed at delta {delta:e} m on the {branch} curve to {delta_max:e} m: {source}")]
+    #[error(
+        "model failed at delta {delta:e} m on the {branch} curve to {delta_max:e} m: {source}"
+    )]
     Overlay {
         /// The curve's maximum interference (m).
         delta_max: f64,

@@ -80,6 +80,9 @@ struct Problem<'a, A> {
 
 type Failure = (usize, LawError);
 
+/// (relative singular value, [(free position, component)]).
+type RawDirection = (f64, Vec<(usize, f64)>);
+
 impl<A: AdhesionLaw + Clone> Problem<'_, A> {
     fn forces(&mut self, theta: &[f64; 6]) -> Result<Vec<f64>, Failure> {
         let fit = from_array(theta).map_err(|e| (0, LawError::law(e)))?;
@@ -88,8 +91,8 @@ impl<A: AdhesionLaw + Clone> Problem<'_, A> {
         self.points
             .iter()
             .enumerate()
-            .map(|(i, p)| {
-                match self.eval.force(p.branch, p.delta_max, p.delta) {
+            .map(
+                |(i, p)| match self.eval.force(p.branch, p.delta_max, p.delta) {
                     Ok(f) if f.is_finite() => Ok(f),
                     Ok(_) => Err((
                         i,
@@ -99,8 +102,8 @@ impl<A: AdhesionLaw + Clone> Problem<'_, A> {
                         }),
                     )),
                     Err(e) => Err((i, e)),
-                }
-            })
+                },
+            )
             .collect()
     }
 
@@ -198,23 +201,99 @@ impl Scaled {
         dtheta
     }
 
-    /// `rank` free constants whose columns are well determined together: the first
-    /// `rank` pivots of the column-pivoted QR (faer) of J D^-1, in the order a1 ... b3.
-    fn pivoted_subset(&self, jac: &Mat<f64>) -> Result<Vec<usize>, CalibError> {
-        if self.nz.is_empty() || self.rank == 0 {
-            return Ok(Vec::new());
-        }
-        let js = Mat::<f64>::from_fn(jac.nrows(), self.nz.len(), |i, k| {
-            jac[(i, self.nz[k])] / self.d[self.nz[k]]
-        });
-        let qr = js.col_piv_qr();
-        let (forward, _) = qr.P().arrays();
-        let mut out: Vec<usize> = forward
+    /// `rank` free constants whose columns are well determined together, in the order
+    /// a1 ... b3: greedy column pivoting (modified Gram-Schmidt) on J D^-1, taking at each
+    /// step the column with the largest remaining norm; near-ties (within 1e-6) go to the
+    /// first constant in the order a1 ... b3, so that the suggestion does not depend on
+    /// rounding.
+    fn pivoted_subset(&self, jac: &Mat<f64>) -> Vec<usize> {
+        let n = jac.nrows();
+        let mut cols: Vec<Vec<f64>> = self
+            .nz
             .iter()
-            .take(self.rank)
-            .filter_map(|&k| self.nz.get(k).copied())
+            .map(|&j| (0..n).map(|i| jac[(i, j)] / self.d[j]).collect())
             .collect();
+        let mut chosen: Vec<usize> = Vec::new();
+        for _ in 0..self.rank.min(cols.len()) {
+            let norms: Vec<f64> = cols.iter().map(|c| dot(c, c).sqrt()).collect();
+            let best = (0..cols.len())
+                .filter(|k| !chosen.contains(k))
+                .fold(0.0f64, |m, k| m.max(norms[k]));
+            let Some(pick) = (0..cols.len())
+                .find(|k| !chosen.contains(k) && norms[*k] >= (1.0 - 1e-6) * best && best > 0.0)
+            else {
+                break;
+            };
+            chosen.push(pick);
+            let q: Vec<f64> = cols[pick].iter().map(|x| x / norms[pick]).collect();
+            for (k, c) in cols.iter_mut().enumerate() {
+                if !chosen.contains(&k) {
+                    let a = dot(&q, c);
+                    for (x, qi) in c.iter_mut().zip(&q) {
+                        *x -= a * qi;
+                    }
+                }
+            }
+        }
+        let mut out: Vec<usize> = chosen.into_iter().map(|k| self.nz[k]).collect();
         out.sort_unstable();
+        out
+    }
+
+    /// A basis of the undetermined directions in scaled coordinates, one per free constant
+    /// outside `subset` (the pivoted, determined columns): for a seen column j,
+    /// v = e_j - sum_{s in subset} c_s e_s with c the least-squares solution (faer QR) of
+    /// J_S c = J_j, normalised (the move of constant j that the subset compensates, to
+    /// first order); for an unseen column, e_j. Each with |J D^-1 v|/s_max.
+    fn directions(
+        &self,
+        jac: &Mat<f64>,
+        subset: &[usize],
+        smax: f64,
+    ) -> Result<Vec<RawDirection>, CalibError> {
+        use faer::linalg::solvers::SolveLstsq;
+        let n = jac.nrows();
+        let p = jac.ncols();
+        let scaled = |i: usize, j: usize| jac[(i, j)] / self.d[j];
+        let mut out = Vec::new();
+        let others: Vec<usize> = (0..p).filter(|j| !subset.contains(j)).collect();
+        if others.is_empty() {
+            return Ok(out);
+        }
+        let js_s = Mat::<f64>::from_fn(n, subset.len(), |i, k| scaled(i, subset[k]));
+        let qr = (!subset.is_empty()).then(|| js_s.qr());
+        for j in others {
+            if !self.nz.contains(&j) {
+                out.push((0.0, vec![(j, 1.0)]));
+                continue;
+            }
+            let rhs = Mat::<f64>::from_fn(n, 1, |i, _| scaled(i, j));
+            let c = match &qr {
+                Some(qr) => qr.solve_lstsq(&rhs),
+                None => Mat::zeros(0, 1),
+            };
+            let mut v: Vec<(usize, f64)> = vec![(j, 1.0)];
+            v.extend(subset.iter().enumerate().map(|(k, &s)| (s, -c[(k, 0)])));
+            let norm = v.iter().map(|(_, x)| x * x).sum::<f64>().sqrt();
+            for (_, x) in v.iter_mut() {
+                *x /= norm;
+            }
+            // |J D^-1 v|
+            let jv = (0..n)
+                .map(|i| {
+                    v.iter()
+                        .map(|&(col, x)| scaled(i, col) * x)
+                        .sum::<f64>()
+                        .powi(2)
+                })
+                .sum::<f64>()
+                .sqrt();
+            let rel = if smax > 0.0 { jv / smax } else { 0.0 };
+            if !(rel.is_finite() && v.iter().all(|(_, x)| x.is_finite())) {
+                return Err(CalibError::Svd { rows: n, cols: p });
+            }
+            out.push((rel, v));
+        }
         Ok(out)
     }
 
@@ -224,11 +303,20 @@ impl Scaled {
         let mut w = vec![1.0; p];
         for (k, &j) in self.nz.iter().enumerate() {
             w[j] = (self.rank..self.nz.len())
-                .map(|i| if i < self.v.ncols() { self.v[(k, i)].powi(2) } else { 0.0 })
+                .map(|i| {
+                    if i < self.v.ncols() {
+                        self.v[(k, i)].powi(2)
+                    } else {
+                        0.0
+                    }
+                })
                 .sum::<f64>();
             if self.v.ncols() < self.nz.len() {
                 // fewer rows than columns: the missing directions are null too
-                w[j] += 1.0 - (0..self.v.ncols()).map(|i| self.v[(k, i)].powi(2)).sum::<f64>();
+                w[j] += 1.0
+                    - (0..self.v.ncols())
+                        .map(|i| self.v[(k, i)].powi(2))
+                        .sum::<f64>();
             }
         }
         w
@@ -264,8 +352,7 @@ fn at_bound(t: &[f64; 6], free: &[Constant]) -> Vec<Constant> {
         .filter(|c| match c {
             Constant::A1 => t[0] == 0.0,
             Constant::A2 => {
-                t[0] + t[1] * (-t[2]).exp() <= 1e-12 * (t[0].abs() + t[1].abs())
-                    && t[1] < 0.0
+                t[0] + t[1] * (-t[2]).exp() <= 1e-12 * (t[0].abs() + t[1].abs()) && t[1] < 0.0
             }
             Constant::A3 => t[2] == 0.0,
             Constant::B2 => t[4] <= B2_MIN,
@@ -365,8 +452,7 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
             }
             let ur = sc.ur(&r);
             let rn = dot(&r, &r).sqrt();
-            if ur.iter().fold(0.0f64, |m, x| m.max(x.abs())) <= options.gradient_tolerance * rn
-            {
+            if ur.iter().fold(0.0f64, |m, x| m.max(x.abs())) <= options.gradient_tolerance * rn {
                 break StopReason::Gradient;
             }
             if iterations >= options.max_iterations {
@@ -382,8 +468,16 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
                     trial[c.index()] += dtheta[j];
                 }
                 project(&mut trial, &free);
-                let dt: Vec<f64> = free.iter().map(|c| trial[c.index()] - theta[c.index()]).collect();
-                let step_norm = dt.iter().zip(&sc.d).map(|(x, d)| (x * d).powi(2)).sum::<f64>().sqrt();
+                let dt: Vec<f64> = free
+                    .iter()
+                    .map(|c| trial[c.index()] - theta[c.index()])
+                    .collect();
+                let step_norm = dt
+                    .iter()
+                    .zip(&sc.d)
+                    .map(|(x, d)| (x * d).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
                 let x_norm = free
                     .iter()
                     .zip(&sc.d)
@@ -391,7 +485,11 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
                     .sum::<f64>()
                     .sqrt();
                 if step_norm <= options.step_tolerance * (x_norm + options.step_tolerance) {
-                    break 'outer if failed { StopReason::Stalled } else { StopReason::Step };
+                    break 'outer if failed {
+                        StopReason::Stalled
+                    } else {
+                        StopReason::Step
+                    };
                 }
                 // predicted reduction of the linear model for the (clamped) step
                 let jd: Vec<f64> = (0..points.len())
@@ -426,7 +524,9 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
                         iterations += 1;
                         *mu_now *= (1.0f64 / 3.0).max(1.0 - (2.0 * rho - 1.0).powi(3));
                         nu = 2.0;
-                        if rel_actual <= options.cost_tolerance && rel_pred <= options.cost_tolerance {
+                        if rel_actual <= options.cost_tolerance
+                            && rel_pred <= options.cost_tolerance
+                        {
                             break 'outer StopReason::Cost;
                         }
                         continue 'outer;
@@ -443,8 +543,20 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
         };
         let evaluations = pb.evaluations;
         self.report(
-            data, &points, &free, start, start_cost, theta, &r, &f, &jac, cost, iterations,
-            evaluations, stop, options,
+            data,
+            &points,
+            &free,
+            start,
+            start_cost,
+            theta,
+            &r,
+            &f,
+            &jac,
+            cost,
+            iterations,
+            evaluations,
+            stop,
+            options,
         )
     }
 
@@ -478,49 +590,40 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
             .filter(|(_, d)| !**d)
             .map(|(c, _)| *c)
             .collect();
-        // undetermined directions: small singular vectors, then unseen columns
         let smax = sc.s.first().copied().unwrap_or(0.0);
-        let mut directions = Vec::new();
-        for i in sc.rank..sc.nz.len() {
-            let sv = if i < sc.s.len() { sc.s[i] } else { 0.0 };
-            let mut comps: Vec<DirectionComponent> = sc
-                .nz
-                .iter()
-                .enumerate()
-                .filter(|_| i < sc.v.ncols())
-                .map(|(k, &j)| DirectionComponent {
-                    constant: free[j],
-                    component: sc.v[(k, i)],
-                })
-                .filter(|c| c.component.abs() >= 1e-3)
-                .collect();
-            comps.sort_by(|a, b| b.component.abs().total_cmp(&a.component.abs()));
-            directions.push(Direction {
-                relative_singular_value: if smax > 0.0 { sv / smax } else { 0.0 },
-                components: comps,
-            });
-        }
-        for (j, c) in free.iter().enumerate() {
-            if !sc.nz.contains(&j) {
-                directions.push(Direction {
-                    relative_singular_value: 0.0,
-                    components: vec![DirectionComponent {
-                        constant: *c,
-                        component: 1.0,
-                    }],
-                });
-            }
-        }
-        let suggested_fit = if not_determined.is_empty() {
+        let subset = sc.pivoted_subset(jac);
+        let suggested_fit: Vec<Constant> = if not_determined.is_empty() {
             Vec::new()
         } else {
-            sc.pivoted_subset(jac)?.into_iter().map(|j| free[j]).collect()
+            subset.iter().map(|&j| free[j]).collect()
         };
-        let mut singular_values: Vec<f64> = sc
-            .s
-            .iter()
-            .map(|s| if smax > 0.0 { s / smax } else { 0.0 })
+        let directions = if not_determined.is_empty() {
+            Vec::new()
+        } else {
+            sc.directions(jac, &subset, smax)?
+        };
+        let directions = directions
+            .into_iter()
+            .map(|(sv, v)| {
+                let mut components: Vec<DirectionComponent> = v
+                    .into_iter()
+                    .filter(|(_, x)| x.abs() >= 1e-3)
+                    .map(|(j, x)| DirectionComponent {
+                        constant: free[j],
+                        component: x,
+                    })
+                    .collect();
+                components.sort_by(|a, b| b.component.abs().total_cmp(&a.component.abs()));
+                Direction {
+                    relative_singular_value: sv,
+                    components,
+                }
+            })
             .collect();
+        let mut singular_values: Vec<f64> =
+            sc.s.iter()
+                .map(|s| if smax > 0.0 { s / smax } else { 0.0 })
+                .collect();
         singular_values.resize(p, 0.0);
 
         // covariance in scaled coordinates over the determined subspace:

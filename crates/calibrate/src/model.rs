@@ -132,14 +132,15 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
                 c.points
                     .iter()
                     .map(|p| {
-                        ev.force(c.branch, c.delta_max, p.delta)
-                            .map_err(|source| CalibError::Model {
+                        ev.force(c.branch, c.delta_max, p.delta).map_err(|source| {
+                            CalibError::Model {
                                 line: p.line,
                                 delta_max: c.delta_max,
                                 branch: c.branch,
                                 delta: p.delta,
                                 source,
-                            })
+                            }
+                        })
                     })
                     .collect()
             })
@@ -162,7 +163,9 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
             .map(|c| {
                 let lo = c.points.iter().fold(c.delta_max, |m, p| m.min(p.delta));
                 let grid: Vec<f64> = match c.branch {
-                    Branch::Loading => contact_core::numeric::linspace(lo, c.delta_max, n).collect(),
+                    Branch::Loading => {
+                        contact_core::numeric::linspace(lo, c.delta_max, n).collect()
+                    }
                     Branch::Unloading => {
                         contact_core::numeric::linspace(c.delta_max, lo, n).collect()
                     }
@@ -328,8 +331,12 @@ mod tests {
         let pair = Pair::new(Material::new(paper::RU).unwrap(), None, paper::RADIUS).unwrap();
         Calibrator::new(
             EtsionKadin::new(&pair, modulus).unwrap(),
-            MaugisKim::new(DugdaleParams::for_pair(&pair, paper::WORK_OF_ADHESION, paper::Z0))
-                .unwrap(),
+            MaugisKim::new(DugdaleParams::for_pair(
+                &pair,
+                paper::WORK_OF_ADHESION,
+                paper::Z0,
+            ))
+            .unwrap(),
         )
     }
 
@@ -364,7 +371,10 @@ mod tests {
                     let mut dn = t;
                     up[k] += h;
                     dn[k] -= h;
-                    let f = |a: &[f64; 6]| cal.force(from_array(a).unwrap(), branch, dmax, delta).unwrap();
+                    let f = |a: &[f64; 6]| {
+                        cal.force(from_array(a).unwrap(), branch, dmax, delta)
+                            .unwrap()
+                    };
                     let fd = (f(&up) - f(&dn)) / (2.0 * h);
                     assert!(
                         (fd - g[k]).abs() <= 1e-6 * gmax,
@@ -401,8 +411,16 @@ mod tests {
             let fz = frozen(fit.c1(omega), fit.c2(omega)).unwrap();
             for branch in [Branch::Loading, Branch::Unloading] {
                 let d = 0.93 * dmax;
-                let om = if branch == Branch::Loading { d / cal.delta_cp() } else { omega };
-                let fz = if branch == Branch::Loading { frozen(fit.c1(om), fit.c2(om)).unwrap() } else { fz };
+                let om = if branch == Branch::Loading {
+                    d / cal.delta_cp()
+                } else {
+                    omega
+                };
+                let fz = if branch == Branch::Loading {
+                    frozen(fit.c1(om), fit.c2(om)).unwrap()
+                } else {
+                    fz
+                };
                 assert_eq!(
                     cal.force(fit, branch, dmax, d).unwrap(),
                     cal.force(fz, branch, dmax, d).unwrap()

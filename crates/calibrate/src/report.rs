@@ -160,7 +160,7 @@ pub struct FitReport {
     /// the motion of the determined combinations).
     pub not_determined: Vec<Constant>,
     /// When some constants are not determined: a subset of the fitted constants, as many as
-    /// the rank, that the data determine together (column-pivoted QR of the scaled
+    /// the rank, that the data determine together (greedy column pivoting on the scaled
     /// Jacobian): a `--fit` selection to try. Empty otherwise.
     pub suggested_fit: Vec<Constant>,
     /// The undetermined directions.
@@ -189,7 +189,11 @@ fn short(x: f64) -> f64 {
 pub fn scene_fragment(fit: &EffectiveRadiusFit) -> String {
     let t = crate::constants::to_array(fit);
     let rounded = t.map(short);
-    let v = if from_array(&rounded).is_ok() { rounded } else { t };
+    let v = if from_array(&rounded).is_ok() {
+        rounded
+    } else {
+        t
+    };
     format!(
         "[contact.effective_radius]\nc1 = [{:?}, {:?}, {:?}]\nc2 = [{:?}, {:?}, {:?}]\n",
         v[0], v[1], v[2], v[3], v[4], v[5]
@@ -235,7 +239,11 @@ impl FitReport {
                     None => "none (no degrees of freedom)".to_string(),
                 }
             };
-            let bound = if self.at_bound.contains(&c) { " (at bound)" } else { "" };
+            let bound = if self.at_bound.contains(&c) {
+                " (at bound)"
+            } else {
+                ""
+            };
             let _ = writeln!(
                 s,
                 "{:<9} {:>13.6e} {:>13.6e}  {note}{bound}",
@@ -248,13 +256,21 @@ impl FitReport {
             s,
             "stop: {:?} ({}), {} iterations, {} evaluations; cost {:.3e} -> {:.3e}",
             self.stop,
-            if self.converged { "converged" } else { "NOT converged" },
+            if self.converged {
+                "converged"
+            } else {
+                "NOT converged"
+            },
             self.iterations,
             self.evaluations,
             self.start_cost,
             self.cost
         );
-        let sv: Vec<String> = self.singular_values.iter().map(|x| format!("{x:.2e}")).collect();
+        let sv: Vec<String> = self
+            .singular_values
+            .iter()
+            .map(|x| format!("{x:.2e}"))
+            .collect();
         let _ = writeln!(
             s,
             "rank {} of {} (relative singular values {}; tolerance {:.0e})",

@@ -152,7 +152,10 @@ mod tests {
         let xs: Vec<f64> = (0..20000).map(|_| g.sample()).collect();
         let mean = xs.iter().sum::<f64>() / xs.len() as f64;
         let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / xs.len() as f64;
-        assert!(mean.abs() < 0.03 && (var - 1.0).abs() < 0.03, "{mean} {var}");
+        assert!(
+            mean.abs() < 0.03 && (var - 1.0).abs() < 0.03,
+            "{mean} {var}"
+        );
         let mut h = Gaussian::new(7);
         assert_eq!(h.sample(), xs[0]);
         assert!(xs.iter().all(|x| x.is_finite()));

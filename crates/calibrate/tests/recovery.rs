@@ -19,14 +19,19 @@ fn from_paper() -> FitOptions {
 fn exact_curves_give_back_the_constants_for_both_readings_of_eq_1() {
     for modulus in READINGS {
         let cal = ru(modulus);
-        let data = cal.synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.0, 1)).unwrap();
+        let data = cal
+            .synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.0, 1))
+            .unwrap();
         let rep = cal.fit(&data, &from_paper()).unwrap();
         assert!(rep.converged, "{modulus:?}: {:?}", rep.stop);
         assert_eq!((rep.rank, rep.not_determined.len()), (6, 0));
         assert!(rep.iterations <= 15, "{}", rep.iterations);
         for c in Constant::ALL {
             let (got, want) = (value(&rep.fit(), c), value(&truth(), c));
-            assert!((got - want).abs() <= 1e-8 * want.abs(), "{modulus:?} {c}: {got} vs {want}");
+            assert!(
+                (got - want).abs() <= 1e-8 * want.abs(),
+                "{modulus:?} {c}: {got} vs {want}"
+            );
         }
         // the refit reproduces the curves to far better than 1e-6 of each peak
         assert!(worst_relative_rms(&cal, rep.fit(), &data) < 1e-10);
@@ -42,16 +47,26 @@ fn exact_curves_give_back_the_constants_for_both_readings_of_eq_1() {
 fn noisy_curves_give_the_constants_within_three_standard_errors() {
     for (modulus, seed) in [(YieldModulus::AsPrinted, 11), (YieldModulus::Composite, 12)] {
         let cal = ru(modulus);
-        let clean = cal.synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.0, seed)).unwrap();
-        let noisy = cal.synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.005, seed)).unwrap();
+        let clean = cal
+            .synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.0, seed))
+            .unwrap();
+        let noisy = cal
+            .synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.005, seed))
+            .unwrap();
         let rep = cal.fit(&noisy, &from_paper()).unwrap();
         assert!(rep.converged, "{:?}", rep.stop);
         assert_eq!(rep.rank, 6);
         for c in Constant::ALL {
-            let se = rep.standard_errors.get(c).expect("determined constants have errors");
+            let se = rep
+                .standard_errors
+                .get(c)
+                .expect("determined constants have errors");
             let (got, want) = (value(&rep.fit(), c), value(&truth(), c));
             assert!(se > 0.0 && se < 0.2 * want.abs(), "{c}: se {se}");
-            assert!((got - want).abs() <= 3.0 * se, "{modulus:?} {c}: {got} vs {want} (se {se})");
+            assert!(
+                (got - want).abs() <= 3.0 * se,
+                "{modulus:?} {c}: {got} vs {want} (se {se})"
+            );
         }
         assert!(worst_relative_rms(&cal, rep.fit(), &clean) < 0.01);
         // the misfit to the noisy data is the noise: about 0.5 % of each peak
@@ -80,7 +95,12 @@ fn standard_errors_match_the_scatter_of_repeated_fits() {
     let mut est = vec![[0.0; 6]; n];
     let mut se = vec![[0.0; 6]; n];
     for seed in 0..n {
-        let data = cal.synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.005, 100 + seed as u64)).unwrap();
+        let data = cal
+            .synthesize(
+                truth(),
+                &spec(&cal, &OMEGAS, 25, 25, 0.005, 100 + seed as u64),
+            )
+            .unwrap();
         let rep = cal.fit(&data, &from_paper()).unwrap();
         assert!(rep.converged);
         for c in Constant::ALL {
@@ -93,9 +113,15 @@ fn standard_errors_match_the_scatter_of_repeated_fits() {
         let mean = est.iter().map(|e| e[k]).sum::<f64>() / n as f64;
         let sd = (est.iter().map(|e| (e[k] - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt();
         let mse = se.iter().map(|s| s[k]).sum::<f64>() / n as f64;
-        assert!(sd / mse > 0.6 && sd / mse < 1.5, "{c}: scatter {sd:e} vs reported {mse:e}");
+        assert!(
+            sd / mse > 0.6 && sd / mse < 1.5,
+            "{c}: scatter {sd:e} vs reported {mse:e}"
+        );
         // and no bias beyond the scatter
-        assert!((mean - value(&truth(), c)).abs() < 3.0 * sd / (n as f64).sqrt() + 1e-12, "{c}: mean {mean}");
+        assert!(
+            (mean - value(&truth(), c)).abs() < 3.0 * sd / (n as f64).sqrt() + 1e-12,
+            "{c}: mean {mean}"
+        );
     }
 }
 
@@ -107,16 +133,25 @@ fn a_fit_started_at_the_truth_stays_there() {
         ..FitOptions::default()
     };
     // exact data: nothing to do
-    let exact = cal.synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.0, 3)).unwrap();
+    let exact = cal
+        .synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.0, 3))
+        .unwrap();
     let rep = cal.fit(&exact, &at_truth).unwrap();
     assert_eq!((rep.stop, rep.iterations), (StopReason::Exact, 0));
     assert_eq!(rep.fit(), truth());
     // noisy data: a few steps (measured: 5, the last ones refining the cost to 1e-10) to
     // the noisy optimum, the cost never rising, and the same
     // optimum as from the paper's constants
-    let noisy = cal.synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.005, 3)).unwrap();
+    let noisy = cal
+        .synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.005, 3))
+        .unwrap();
     let rep = cal.fit(&noisy, &at_truth).unwrap();
-    assert!(rep.converged && rep.iterations <= 6, "{:?} {}", rep.stop, rep.iterations);
+    assert!(
+        rep.converged && rep.iterations <= 6,
+        "{:?} {}",
+        rep.stop,
+        rep.iterations
+    );
     assert!(rep.cost <= rep.start_cost);
     let other = cal.fit(&noisy, &from_paper()).unwrap();
     for c in Constant::ALL {
@@ -133,11 +168,17 @@ fn a_fit_started_at_the_truth_stays_there() {
 fn a_constant_on_its_bound_is_reached_not_crossed() {
     let cal = ru(YieldModulus::AsPrinted);
     let edge = EffectiveRadiusFit::new([0.0, 0.7, 0.08], [8.0, 12.0, 4.0]).unwrap();
-    let data = cal.synthesize(edge, &spec(&cal, &OMEGAS, 25, 25, 0.0, 5)).unwrap();
+    let data = cal
+        .synthesize(edge, &spec(&cal, &OMEGAS, 25, 25, 0.0, 5))
+        .unwrap();
     let rep = cal.fit(&data, &from_paper()).unwrap();
     assert!(rep.converged, "{:?}", rep.stop);
     assert!(rep.c1[0] >= 0.0 && rep.c1[0] < 1e-8, "{:?}", rep.c1);
-    assert!((rep.c1[1] - 0.7).abs() < 1e-6 && (rep.c1[2] - 0.08).abs() < 1e-6, "{:?}", rep.c1);
+    assert!(
+        (rep.c1[1] - 0.7).abs() < 1e-6 && (rep.c1[2] - 0.08).abs() < 1e-6,
+        "{:?}",
+        rep.c1
+    );
     assert_eq!(rep.at_bound, [Constant::A1]);
 }
 
@@ -146,9 +187,18 @@ fn fitting_a_subset_holds_the_others() {
     let cal = ru(YieldModulus::Composite);
     // c2 held at the truth, c1 fitted from the paper's
     let start = EffectiveRadiusFit::new(EffectiveRadiusFit::PAPER.c1, truth().c2).unwrap();
-    let data = cal.synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.0, 6)).unwrap();
+    let data = cal
+        .synthesize(truth(), &spec(&cal, &OMEGAS, 25, 25, 0.0, 6))
+        .unwrap();
     let rep = cal
-        .fit(&data, &FitOptions { start: Some(start), select: "c1".parse().unwrap(), ..FitOptions::default() })
+        .fit(
+            &data,
+            &FitOptions {
+                start: Some(start),
+                select: "c1".parse().unwrap(),
+                ..FitOptions::default()
+            },
+        )
         .unwrap();
     assert!(rep.converged);
     assert_eq!(rep.c2, truth().c2);
@@ -160,8 +210,19 @@ fn fitting_a_subset_holds_the_others() {
     // single names: only b3 with the rest at the truth but b3 off
     let start = EffectiveRadiusFit::new(truth().c1, [8.0, 12.0, 3.0]).unwrap();
     let rep = cal
-        .fit(&data, &FitOptions { start: Some(start), select: "b3".parse().unwrap(), ..FitOptions::default() })
+        .fit(
+            &data,
+            &FitOptions {
+                start: Some(start),
+                select: "b3".parse().unwrap(),
+                ..FitOptions::default()
+            },
+        )
         .unwrap();
-    assert!(rep.converged && (rep.c2[2] - 4.0).abs() < 1e-9, "{:?}", rep.c2);
+    assert!(
+        rep.converged && (rep.c2[2] - 4.0).abs() < 1e-9,
+        "{:?}",
+        rep.c2
+    );
     assert_eq!((rep.c1, [rep.c2[0], rep.c2[1]]), (truth().c1, [8.0, 12.0]));
 }

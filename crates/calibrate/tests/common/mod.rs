@@ -17,13 +17,24 @@ pub fn ru(modulus: YieldModulus) -> Calibrator<MaugisKim> {
     let pair = Pair::new(Material::new(paper::RU).unwrap(), None, paper::RADIUS).unwrap();
     Calibrator::new(
         EtsionKadin::new(&pair, modulus).unwrap(),
-        MaugisKim::new(DugdaleParams::for_pair(&pair, paper::WORK_OF_ADHESION, paper::Z0))
-            .unwrap(),
+        MaugisKim::new(DugdaleParams::for_pair(
+            &pair,
+            paper::WORK_OF_ADHESION,
+            paper::Z0,
+        ))
+        .unwrap(),
     )
 }
 
 /// Runs at `omegas` delta_CP, `n` points per branch (0 unloading points: loading only).
-pub fn spec(cal: &Calibrator<MaugisKim>, omegas: &[f64], n_load: usize, n_unload: usize, noise: f64, seed: u64) -> SynthSpec {
+pub fn spec(
+    cal: &Calibrator<MaugisKim>,
+    omegas: &[f64],
+    n_load: usize,
+    n_unload: usize,
+    noise: f64,
+    seed: u64,
+) -> SynthSpec {
     SynthSpec {
         delta_max: omegas.iter().map(|w| w * cal.delta_cp()).collect(),
         loading_points: n_load,
@@ -38,14 +49,23 @@ pub const OMEGAS: [f64; 4] = [5.0, 10.0, 20.0, 40.0];
 
 /// Worst per-curve RMS of (model at `fit`) - (reference forces), relative to the curve's
 /// peak.
-pub fn worst_relative_rms(cal: &Calibrator<MaugisKim>, fit: EffectiveRadiusFit, reference: &FeData) -> f64 {
+pub fn worst_relative_rms(
+    cal: &Calibrator<MaugisKim>,
+    fit: EffectiveRadiusFit,
+    reference: &FeData,
+) -> f64 {
     let pred = cal.predict(fit, reference).unwrap();
     reference
         .curves()
         .iter()
         .zip(&pred)
         .map(|(c, p)| {
-            let ss: f64 = c.points.iter().zip(p).map(|(a, f)| (a.force - f).powi(2)).sum();
+            let ss: f64 = c
+                .points
+                .iter()
+                .zip(p)
+                .map(|(a, f)| (a.force - f).powi(2))
+                .sum();
             (ss / p.len() as f64).sqrt() / c.peak_force()
         })
         .fold(0.0, f64::max)
