@@ -1,12 +1,14 @@
-//! The `stiction` command line. Exit status: 0 success, 2 bad input, 1 numerical failure.
+//! The `stiction` command line: clap definitions and a short dispatch. Exit status: 0
+//! success, 2 bad input, 1 numerical failure.
 
-use crate::output::{self, Format};
-use crate::run::{self, RunError};
-use crate::scene::{self, Accuracy, AsperityScene, SurfaceScene, SwitchScene};
+use crate::accuracy::Accuracy;
+use crate::commands::{self, asperity::AsperityCommand, md, surface::SurfaceCommand, switch::SwitchCommand};
+use crate::error::Error;
+use crate::render::{self, Format};
+use crate::scene::fields::Kind;
 use clap::{Parser, Subcommand, ValueEnum};
-use contact_core::Path as LawPath;
 use std::ffi::OsString;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -17,24 +19,34 @@ use std::path::{Path, PathBuf};
                   Without a subcommand, runs the paper's micro-switch scene (Fig 4) and writes out/.\n\
                   All scene values and outputs are SI (m, N, Pa, J/m^2) unless a column says otherwise."
 )]
+/// The command line.
 pub struct Cli {
+    /// The subcommand (the paper's switch scene if none).
     #[command(subcommand)]
     pub command: Option<Command>,
 }
 
+/// A path option of `md --delta`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum PathArg {
+    /// Coming from far away.
     Approach,
+    /// Retracting after `--from`.
     Retract,
 }
 
+/// The scene kinds of `scene --print`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum SceneKind {
+    /// `stiction asperity`.
     Asperity,
+    /// `stiction surface`.
     Surface,
+    /// `stiction switch`, `design`, `law`.
     Switch,
 }
 
+/// The subcommands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Maugis-Dugdale curve with the Kim extension, nondimensional (paper eq 7).
@@ -43,7 +55,7 @@ pub enum Command {
         #[arg(long, allow_hyphen_values = true)]
         lambda: f64,
         /// Points on the curve.
-        #[arg(long, default_value_t = 200)]
+        #[arg(long, default_value_t = 200, allow_hyphen_values = true)]
         points: usize,
         /// Largest interference Delta of the curve.
         #[arg(long, default_value_t = 5.0, allow_hyphen_values = true)]
@@ -57,6 +69,7 @@ pub enum Command {
         /// Largest interference of the excursion for --path retract.
         #[arg(long, allow_hyphen_values = true)]
         from: Option<f64>,
+        /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Json)]
         format: Format,
     },
@@ -68,46 +81,56 @@ pub enum Command {
         /// Maximum interference (m); repeat for several cases. Replaces the scene's list.
         #[arg(long = "delta-max", allow_hyphen_values = true)]
         delta_max: Vec<f64>,
+        /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Table)]
         format: Format,
         /// Write an SVG plot of the curves.
         #[arg(long)]
         plot: Option<PathBuf>,
     },
-    /// The rough surface: virgin loading and, with --unload-from, unloading.
+    /// The rough surface: virgin loading and, with --unload-from, unloading and reloading.
     Surface {
+        /// Scene file (TOML); the paper's surface if absent.
         #[arg(long)]
         scene: Option<PathBuf>,
         /// Load to this separation d (m) and unload from it.
         #[arg(long, allow_hyphen_values = true)]
         unload_from: Option<f64>,
+        /// Accuracy mode (replaces the scene's).
         #[arg(long, value_enum)]
         accuracy: Option<Accuracy>,
+        /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Table)]
         format: Format,
+        /// Write an SVG plot of the curves.
         #[arg(long)]
         plot: Option<PathBuf>,
     },
     /// The micro-switch cycle by cycle: d_e, pull-out pressure, accommodation, stiction.
     Switch {
+        /// Scene file (TOML); the paper's switch if absent.
         #[arg(long)]
         scene: Option<PathBuf>,
-        /// Number of cycles (replaces the scene's).
-        #[arg(long, conflicts_with = "until_accommodated")]
+        /// Number of cycles (replaces the scene's), 1..1000.
+        #[arg(long, conflicts_with = "until_accommodated", allow_hyphen_values = true)]
         cycles: Option<usize>,
         /// Run until accommodation is detected (at most the scene's cycles, or 1000).
         #[arg(long)]
         until_accommodated: bool,
+        /// Accuracy mode (replaces the scene's).
         #[arg(long, value_enum)]
         accuracy: Option<Accuracy>,
+        /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Table)]
         format: Format,
-        /// Write switch.json, cycles.csv, curves.csv and switch.svg here.
+        /// Write switch.json, cycles.csv, curves.csv and switch.svg to this folder
+        /// (replaced as a whole; it may hold only those files).
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Print an embedded scene as TOML, to start a scene of your own from.
+    /// Print an embedded scene as TOML, with every accepted key, to start a scene from.
     Scene {
+        /// Which scene.
         #[arg(long, value_enum)]
         print: SceneKind,
     },
@@ -119,15 +142,14 @@ pub fn main_with_args<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
         Ok(c) => c,
         Err(e) => {
             let code = if e.use_stderr() { 2 } else { 0 };
-            let _ = e.print();
+            if e.print().is_err() {
+                return code;
+            }
             return code;
         }
     };
-    match execute(cli.command) {
-        Ok(text) => {
-            print!("{text}");
-            0
-        }
+    match execute(cli.command).and_then(|text| render::emit(&text)) {
+        Ok(()) => 0,
         Err(e) => {
             eprintln!("error: {e}");
             e.exit_code()
@@ -135,17 +157,8 @@ pub fn main_with_args<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
     }
 }
 
-fn write_file(path: &Path, text: &str) -> Result<(), RunError> {
-    std::fs::write(path, text)
-        .map_err(|e| RunError::Input(format!("cannot write {}: {e}", path.display())))
-}
-
-fn plot_err(path: &Path, e: String) -> RunError {
-    RunError::Input(format!("cannot write plot {}: {e}", path.display()))
-}
-
-/// Runs one command and returns what it prints.
-pub fn execute(command: Option<Command>) -> Result<String, RunError> {
+/// Runs one command and returns what it prints on standard output.
+pub fn execute(command: Option<Command>) -> Result<String, Error> {
     let command = command.unwrap_or(Command::Switch {
         scene: None,
         cycles: None,
@@ -163,148 +176,66 @@ pub fn execute(command: Option<Command>) -> Result<String, RunError> {
             path,
             from,
             format,
-        } => {
-            if let Some(delta) = delta {
+        } => match delta {
+            Some(delta) => {
                 let p = match (path, from) {
-                    (PathArg::Approach, None) => LawPath::Approach,
+                    (PathArg::Approach, None) => contact_core::Path::Approach,
                     (PathArg::Approach, Some(_)) => {
-                        return Err(RunError::Input(
-                            "--from applies to --path retract only".into(),
-                        ))
+                        return Err(Error::usage("--from", "applies to --path retract only"))
                     }
-                    (PathArg::Retract, Some(f)) => LawPath::Retract { from: f },
+                    (PathArg::Retract, Some(f)) => contact_core::Path::Retract { from: f },
                     (PathArg::Retract, None) => {
-                        return Err(RunError::Input("--path retract needs --from".into()))
+                        return Err(Error::usage("--path retract", "needs --from"))
                     }
                 };
-                let r = run::md_point(lambda, delta, p)?;
-                return Ok(match format {
-                    Format::Json => output::json(&r),
-                    Format::Csv => format!(
-                        "lambda,delta,path,force\n{},{},{},{}\n",
-                        r.lambda, r.delta, r.path, r.force
-                    ),
-                    Format::Table => format!(
-                        "lambda = {}, Delta = {}, path = {}: Fbar = {}\n",
-                        r.lambda, r.delta, r.path, r.force
-                    ),
-                });
+                Ok(commands::show(&md::point(lambda, delta, p)?, format))
             }
-            let r = run::md(lambda, points, delta_end)?;
-            Ok(match format {
-                Format::Json => output::json(&r),
-                Format::Csv => output::md_csv(&r),
-                Format::Table => output::md_table(&r),
-            })
-        }
+            None => Ok(commands::show(&md::curve(lambda, points, delta_end)?, format)),
+        },
         Command::Asperity {
-            scene: file,
+            scene,
             delta_max,
             format,
             plot,
-        } => {
-            let (name, mut s): (String, AsperityScene) =
-                scene::load(file.as_deref(), scene::DEFAULT_ASPERITY)?;
-            if !delta_max.is_empty() {
-                s.delta_max = delta_max;
-            }
-            s.validate(&name)?;
-            let r = run::asperity(&s).map_err(|e| e.in_scene(&name))?;
-            if let Some(p) = &plot {
-                output::asperity_plot(&r, p).map_err(|e| plot_err(p, e))?;
-            }
-            Ok(match format {
-                Format::Json => output::json(&r),
-                Format::Csv => output::asperity_csv(&r),
-                Format::Table => output::asperity_table(&r),
-            })
-        }
+        } => commands::pipeline(&AsperityCommand {
+            scene,
+            delta_max,
+            format,
+            plot,
+        }),
         Command::Surface {
-            scene: file,
+            scene,
             unload_from,
             accuracy,
             format,
             plot,
-        } => {
-            let (name, mut s): (String, SurfaceScene) =
-                scene::load(file.as_deref(), scene::DEFAULT_SURFACE)?;
-            if unload_from.is_some() {
-                s.unload_from = unload_from;
-            }
-            if let Some(a) = accuracy {
-                s.accuracy = a;
-            }
-            s.validate(&name)?;
-            let r = run::surface(&s).map_err(|e| e.in_scene(&name))?;
-            if let Some(p) = &plot {
-                output::surface_plot(&r, p).map_err(|e| plot_err(p, e))?;
-            }
-            Ok(match format {
-                Format::Json => output::json(&r),
-                Format::Csv => output::surface_csv(&r),
-                Format::Table => output::surface_table(&r),
-            })
-        }
+        } => commands::pipeline(&SurfaceCommand {
+            scene,
+            unload_from,
+            accuracy,
+            format,
+            plot,
+        }),
         Command::Switch {
-            scene: file,
+            scene,
             cycles,
             until_accommodated,
             accuracy,
             format,
             out,
-        } => {
-            let (name, mut s): (String, SwitchScene) =
-                scene::load(file.as_deref(), scene::DEFAULT_SWITCH)?;
-            if let Some(n) = cycles {
-                s.cycles = n;
-            }
-            if until_accommodated {
-                s.until_accommodated = true;
-                if file.is_none() {
-                    s.cycles = 1000;
-                }
-            }
-            if let Some(a) = accuracy {
-                s.accuracy = a;
-            }
-            s.validate(&name)?;
-            let r = run::switch(&s).map_err(|e| e.in_scene(&name))?;
-            let mut text = match format {
-                Format::Json => output::json(&r),
-                Format::Csv => output::switch_cycles_csv(&r),
-                Format::Table => output::switch_table(&r),
-            };
-            if let Some(dir) = out {
-                std::fs::create_dir_all(&dir).map_err(|e| {
-                    RunError::Input(format!("cannot create {}: {e}", dir.display()))
-                })?;
-                write_file(&dir.join("switch.json"), &output::json(&r))?;
-                write_file(&dir.join("cycles.csv"), &output::switch_cycles_csv(&r))?;
-                write_file(&dir.join("curves.csv"), &output::switch_curves_csv(&r))?;
-                let svg = dir.join("switch.svg");
-                let mut written = vec!["switch.json", "cycles.csv", "curves.csv"];
-                if !r.loading.is_empty() {
-                    output::switch_plot(&r, &svg).map_err(|e| plot_err(&svg, e))?;
-                    written.push("switch.svg");
-                }
-                if format == Format::Table {
-                    let list: Vec<String> = written
-                        .iter()
-                        .map(|f| dir.join(f).display().to_string())
-                        .collect();
-                    text.push_str(&format!("\nwrote {}\n", list.join(", ")));
-                    if r.loading.is_empty() {
-                        text.push_str("(no plot: the scene asks for no curves, points = 0)\n");
-                    }
-                }
-            }
-            Ok(text)
-        }
-        Command::Scene { print } => Ok(match print {
-            SceneKind::Asperity => scene::DEFAULT_ASPERITY,
-            SceneKind::Surface => scene::DEFAULT_SURFACE,
-            SceneKind::Switch => scene::DEFAULT_SWITCH,
-        }
+        } => commands::pipeline(&SwitchCommand {
+            scene,
+            cycles,
+            until_accommodated,
+            accuracy,
+            format,
+            out,
+        }),
+        Command::Scene { print } => Ok(commands::print::scene_text(match print {
+            SceneKind::Asperity => Kind::Asperity,
+            SceneKind::Surface => Kind::Surface,
+            SceneKind::Switch => Kind::Switch,
+        })
         .to_string()),
     }
 }

@@ -1,16 +1,20 @@
 //! Builds the concrete laws a scene asks for. Enum dispatch keeps one concrete asperity
 //! type for every combination of laws, so the surface and switch code is compiled once.
 
-use crate::scene::{Accuracy, AdhesionKind, Contact, CounterKind, PlasticityKind, Surface};
-use asperity_plastic::{Elastic, ElastoPlasticAsperity, EtsionKadin};
+use crate::accuracy::Accuracy;
+use crate::error::Error;
+use crate::scene::{AdhesionKind, Contact, CounterKind, PlasticityKind, Surface};
+use asperity_plastic::{EffectiveRadiusFit, Elastic, ElastoPlasticAsperity, EtsionKadin};
 use contact_core::{
-    AdhesionLaw, Jumps, LawError, Material, Pair, Path, PlasticState, PlasticityLaw,
+    AdhesionLaw, Jumps, LawError, Material, MaterialProps, Pair, Path, PlasticState,
+    PlasticityLaw,
 };
-use gw_surface::{GreenwoodWilliamson, Quadrature};
-use maugis_kim::{Dmt, Hertz, Jkr, MaugisKim};
+use gw_surface::{GreenwoodWilliamson, Roughness};
+use maugis_kim::{Dmt, DugdaleParams, Hertz, Jkr, JkrParams, MaugisKim};
 
 /// Any of the adhesion laws of `maugis-kim`.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[allow(missing_docs)]
 pub enum AnyAdhesion {
     Hertz(Hertz),
     Dmt(Dmt),
@@ -18,43 +22,35 @@ pub enum AnyAdhesion {
     MaugisKim(MaugisKim),
 }
 
+macro_rules! each_adhesion {
+    ($self:expr, $l:ident => $e:expr) => {
+        match $self {
+            AnyAdhesion::Hertz($l) => $e,
+            AnyAdhesion::Dmt($l) => $e,
+            AnyAdhesion::Jkr($l) => $e,
+            AnyAdhesion::MaugisKim($l) => $e,
+        }
+    };
+}
+
 impl AdhesionLaw for AnyAdhesion {
     fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
-        match self {
-            AnyAdhesion::Hertz(l) => l.force(radius, delta, path),
-            AnyAdhesion::Dmt(l) => l.force(radius, delta, path),
-            AnyAdhesion::Jkr(l) => l.force(radius, delta, path),
-            AnyAdhesion::MaugisKim(l) => l.force(radius, delta, path),
-        }
+        each_adhesion!(self, l => l.force(radius, delta, path))
     }
     fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
-        match self {
-            AnyAdhesion::Hertz(l) => l.jumps(radius),
-            AnyAdhesion::Dmt(l) => l.jumps(radius),
-            AnyAdhesion::Jkr(l) => l.jumps(radius),
-            AnyAdhesion::MaugisKim(l) => l.jumps(radius),
-        }
+        each_adhesion!(self, l => l.jumps(radius))
     }
     fn jump_in(&self, radius: f64) -> Result<f64, LawError> {
-        match self {
-            AnyAdhesion::Hertz(l) => l.jump_in(radius),
-            AnyAdhesion::Dmt(l) => l.jump_in(radius),
-            AnyAdhesion::Jkr(l) => l.jump_in(radius),
-            AnyAdhesion::MaugisKim(l) => l.jump_in(radius),
-        }
+        each_adhesion!(self, l => l.jump_in(radius))
     }
-    fn kinks(&self, radius: f64) -> Result<Vec<f64>, LawError> {
-        match self {
-            AnyAdhesion::Hertz(l) => l.kinks(radius),
-            AnyAdhesion::Dmt(l) => l.kinks(radius),
-            AnyAdhesion::Jkr(l) => l.kinks(radius),
-            AnyAdhesion::MaugisKim(l) => l.kinks(radius),
-        }
+    fn kinks(&self, radius: f64) -> Result<Vec<Option<f64>>, LawError> {
+        each_adhesion!(self, l => l.kinks(radius))
     }
 }
 
 /// Either plasticity law of `asperity-plastic`.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[allow(missing_docs)]
 pub enum AnyPlasticity {
     EtsionKadin(EtsionKadin),
     Elastic(Elastic),
@@ -67,10 +63,10 @@ impl PlasticityLaw for AnyPlasticity {
             AnyPlasticity::Elastic(l) => l.radius(),
         }
     }
-    fn critical_interference(&self) -> f64 {
+    fn delta_cp(&self) -> f64 {
         match self {
-            AnyPlasticity::EtsionKadin(l) => l.critical_interference(),
-            AnyPlasticity::Elastic(l) => l.critical_interference(),
+            AnyPlasticity::EtsionKadin(l) => l.delta_cp(),
+            AnyPlasticity::Elastic(l) => l.delta_cp(),
         }
     }
     fn state(&self, delta_max: f64) -> PlasticState {
@@ -90,96 +86,95 @@ impl PlasticityLaw for AnyPlasticity {
 /// The asperity every scene uses.
 pub type Asperity = ElastoPlasticAsperity<AnyPlasticity, AnyAdhesion>;
 /// The rough surface every scene uses.
-pub type Surface_ = GreenwoodWilliamson<Asperity>;
+pub type RoughSurface = GreenwoodWilliamson<Asperity>;
 
-/// A model-building failure (the scene was validated, so this is a law refusing it).
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct BuildError(pub String);
-
-fn build_err(e: impl std::fmt::Display) -> BuildError {
-    BuildError(e.to_string())
+/// The film material of a scene.
+pub fn material(c: &Contact) -> Result<Material, Error> {
+    Ok(Material::new(MaterialProps {
+        youngs_modulus: c.youngs_modulus,
+        poisson_ratio: c.poisson_ratio,
+        yield_stress: c.yield_stress,
+    })?)
 }
 
-/// The pair of a scene.
-pub fn pair(c: &Contact) -> Result<Pair, BuildError> {
-    let m = Material::new(c.youngs_modulus, c.poisson_ratio, c.yield_stress).map_err(build_err)?;
+/// The pair of a scene: the film against a rigid flat, itself, or another material.
+pub fn pair(c: &Contact) -> Result<Pair, Error> {
+    let m = material(c)?;
     let counter = match c.counter {
         CounterKind::Rigid => None,
         CounterKind::Same => Some(m),
-        CounterKind::Material => Some(
-            Material::new(
-                c.counter_youngs_modulus.unwrap_or(f64::NAN),
-                c.counter_poisson_ratio.unwrap_or(f64::NAN),
-                f64::INFINITY,
-            )
-            .map_err(build_err)?,
-        ),
+        CounterKind::Material => Some(Material::new(MaterialProps {
+            youngs_modulus: c.counter_youngs_modulus.unwrap_or(f64::NAN),
+            poisson_ratio: c.counter_poisson_ratio.unwrap_or(f64::NAN),
+            yield_stress: c.counter_yield_stress.unwrap_or(f64::INFINITY),
+        })?),
     };
-    Pair::new(m, counter, c.radius).map_err(build_err)
+    Ok(Pair::new(m, counter, c.radius)?)
 }
 
 /// The adhesion law of a scene.
-pub fn adhesion(c: &Contact) -> Result<AnyAdhesion, BuildError> {
-    let k = pair(c)?.k();
+pub fn adhesion(c: &Contact) -> Result<AnyAdhesion, Error> {
+    let p = pair(c)?;
+    let dugdale = DugdaleParams::for_pair(&p, c.work_of_adhesion, c.z0);
     Ok(match c.adhesion_law {
-        AdhesionKind::Hertz => AnyAdhesion::Hertz(Hertz::new(k).map_err(build_err)?),
-        AdhesionKind::Dmt => {
-            AnyAdhesion::Dmt(Dmt::new(k, c.work_of_adhesion, c.z0).map_err(build_err)?)
-        }
-        AdhesionKind::Jkr => AnyAdhesion::Jkr(Jkr::new(k, c.work_of_adhesion).map_err(build_err)?),
-        AdhesionKind::MaugisKim => {
-            AnyAdhesion::MaugisKim(MaugisKim::new(k, c.work_of_adhesion, c.z0).map_err(build_err)?)
-        }
+        AdhesionKind::Hertz => AnyAdhesion::Hertz(Hertz::new(p.k())?),
+        AdhesionKind::Dmt => AnyAdhesion::Dmt(Dmt::new(dugdale)?),
+        AdhesionKind::Jkr => AnyAdhesion::Jkr(Jkr::new(JkrParams {
+            k: p.k(),
+            work_of_adhesion: c.work_of_adhesion,
+        })?),
+        AdhesionKind::MaugisKim => AnyAdhesion::MaugisKim(MaugisKim::new(dugdale)?),
+    })
+}
+
+/// The plasticity law of a scene; `elastic` forces the elastic comparison law.
+pub fn plasticity(c: &Contact, elastic: bool) -> Result<AnyPlasticity, Error> {
+    Ok(if elastic || c.plasticity_law == PlasticityKind::Elastic {
+        AnyPlasticity::Elastic(Elastic::new(c.radius)?)
+    } else {
+        let fit = EffectiveRadiusFit::new(c.effective_radius.c1, c.effective_radius.c2)?;
+        AnyPlasticity::EtsionKadin(EtsionKadin::new(&pair(c)?, c.yield_modulus())?.with_fit(fit))
     })
 }
 
 /// The asperity of a scene; `elastic` forces the elastic comparison law.
-pub fn asperity(c: &Contact, elastic: bool) -> Result<Asperity, BuildError> {
-    let p = pair(c)?;
-    let plasticity = if elastic || c.plasticity_law == PlasticityKind::Elastic {
-        AnyPlasticity::Elastic(Elastic::new(c.radius).map_err(build_err)?)
-    } else {
-        AnyPlasticity::EtsionKadin(EtsionKadin::new(&p, c.yield_modulus).map_err(build_err)?)
-    };
-    Ok(ElastoPlasticAsperity::new(plasticity, adhesion(c)?))
+pub fn asperity(c: &Contact, elastic: bool) -> Result<Asperity, Error> {
+    Ok(ElastoPlasticAsperity::new(plasticity(c, elastic)?, adhesion(c)?))
 }
 
-/// The quadrature of an accuracy mode.
-pub fn quadrature(a: Accuracy) -> Quadrature {
-    match a {
-        Accuracy::Accurate => Quadrature::Adaptive { rel_tol: 1e-10 },
-        Accuracy::Balanced => Quadrature::GaussLegendre {
-            nodes: 12,
-            panel_sigmas: 0.5,
-        },
-        Accuracy::Fast => Quadrature::GaussLegendre {
-            nodes: 6,
-            panel_sigmas: 1.0,
-        },
-    }
-}
-
-/// The rule of the eq-17 d-integral of an accuracy mode.
-pub fn energy_rule(a: Accuracy) -> switch_1d::EnergyRule {
-    match a {
-        Accuracy::Accurate | Accuracy::Balanced => switch_1d::EnergyRule::DEFAULT,
-        Accuracy::Fast => switch_1d::EnergyRule::COARSE,
-    }
-}
-
-/// The rough surface of a scene.
+/// The rough surface of a scene at an accuracy mode (`abs_floor`: a pressure error in Pa
+/// that does not matter, 0 for none).
 pub fn surface(
     c: &Contact,
     s: &Surface,
     accuracy: Accuracy,
+    abs_floor: f64,
     elastic: bool,
-) -> Result<Surface_, BuildError> {
-    GreenwoodWilliamson::new(
+) -> Result<RoughSurface, Error> {
+    Ok(GreenwoodWilliamson::new(
         asperity(c, elastic)?,
-        s.sigma_s,
-        s.asperity_density,
-        quadrature(accuracy),
-    )
-    .map_err(build_err)
+        Roughness {
+            sigma_s: s.sigma_s,
+            asperity_density: s.asperity_density,
+        },
+        accuracy.quadrature(abs_floor),
+    )?)
+}
+
+/// The adhesion law's name as scenes spell it.
+pub fn adhesion_name(k: AdhesionKind) -> &'static str {
+    match k {
+        AdhesionKind::Hertz => "hertz",
+        AdhesionKind::Dmt => "dmt",
+        AdhesionKind::Jkr => "jkr",
+        AdhesionKind::MaugisKim => "maugis_kim",
+    }
+}
+
+/// The plasticity law's name as scenes spell it.
+pub fn plasticity_name(k: PlasticityKind) -> &'static str {
+    match k {
+        PlasticityKind::EtsionKadin => "etsion_kadin",
+        PlasticityKind::Elastic => "elastic",
+    }
 }

@@ -1,80 +1,153 @@
-//! Each accuracy mode's error against the accurate mode, bounded on every embedded scene
-//! that has modes (the asperity scene solves every point exactly and has none).
-//! Bounds: balanced 1e-9, fast 1e-4 (relative); measured values in docs/performance.md.
+//! The accuracy modes hold where users go: random switch scenes drawn by a seeded
+//! generator over the documented domains (plausible MEMS contacts and the wide ranges a
+//! scene accepts), every adhesion law, both plasticity laws, both readings of eq 1, and a
+//! user law that declares no kinks. Each mode is measured against the accurate mode, the
+//! accurate mode against the reference; the pull-out does not depend on the curve asked
+//! for; d_e never jumps up between cycles. The distribution over many more scenes is in
+//! docs/performance.md (`cargo xtask accuracy`).
 
-use stiction::run;
-use stiction::scene::{self, Accuracy, SurfaceScene, SwitchScene};
+#[path = "../examples/custom_law.rs"]
+#[allow(dead_code)]
+mod custom_law;
 
-const BOUND: [(Accuracy, f64); 2] = [(Accuracy::Balanced, 1e-9), (Accuracy::Fast, 1e-4)];
+use stiction::accuracy::Accuracy;
+use stiction::commands::switch::{self, SwitchReport};
+use stiction::scene::{Loaded, Scene, SwitchScene};
+use stiction::scenegen::{self, Domain, Rng};
 
-#[test]
-fn surface_scene_modes_stay_within_their_bounds() {
-    let mut s: SurfaceScene = scene::parse("test", scene::DEFAULT_SURFACE).unwrap();
-    s.points = 25;
-    s.accuracy = Accuracy::Accurate;
-    let exact = run::surface(&s).unwrap();
-    let scale = exact
-        .loading
-        .iter()
-        .chain(&exact.unloading)
-        .map(|p| p.pressure.abs())
-        .fold(0.0, f64::max);
-    for (mode, bound) in BOUND {
-        s.accuracy = mode;
-        let r = run::surface(&s).unwrap();
-        for (a, b) in exact
-            .loading
-            .iter()
-            .zip(&r.loading)
-            .chain(exact.unloading.iter().zip(&r.unloading))
-        {
-            assert_eq!(a.d, b.d);
-            // relative to the pressure, or to the curve's scale where the pressure crosses zero
-            let err = (a.pressure - b.pressure).abs() / a.pressure.abs().max(1e-3 * scale);
-            assert!(
-                err <= bound,
-                "{mode:?} at d = {}: {} vs {} ({err:e})",
-                a.d,
-                b.pressure,
-                a.pressure
-            );
+fn run(s: &SwitchScene, accuracy: Accuracy, points: usize) -> Result<SwitchReport, stiction::Error> {
+    let mut s = s.clone();
+    s.accuracy = accuracy;
+    s.points = points;
+    switch::run(&Loaded { file: "generated".into(), scene: s, is_paper: false }, false)
+}
+
+/// Worst (d_e error in sigma_s, pull-out error relative with the 1e-9 K_s d0 floor).
+fn errors(a: &SwitchReport, b: &SwitchReport, sigma: f64) -> (f64, f64) {
+    let floor = 1e-9 * a.restoring_pressure / a.contact_area_fraction;
+    a.cycles.iter().zip(&b.cycles).fold((0.0f64, 0.0f64), |(de, po), (x, y)| {
+        (
+            de.max((x.d_e - y.d_e).abs() / sigma),
+            po.max((x.pull_out_pressure - y.pull_out_pressure).abs() / x.pull_out_pressure.abs().max(floor)),
+        )
+    })
+}
+
+fn scenes(domain: Domain, seed: u64, n: usize) -> Vec<SwitchScene> {
+    let mut rng = Rng::new(seed);
+    let mut out = Vec::new();
+    while out.len() < n {
+        let mut s = scenegen::switch_scene(&mut rng, domain);
+        s.cycles = 2;
+        if s.validate("generated").is_ok() {
+            out.push(s);
         }
-        let (pa, pb) = (
-            exact.pull_out_pressure.unwrap(),
-            r.pull_out_pressure.unwrap(),
-        );
-        assert!(
-            (pa - pb).abs() <= bound * pa,
-            "{mode:?} pull-out {pb} vs {pa}"
-        );
     }
+    out
 }
 
 #[test]
-fn switch_scene_modes_stay_within_their_bounds() {
-    let mut s: SwitchScene = scene::parse("test", scene::DEFAULT_SWITCH).unwrap();
-    s.points = 0;
-    s.accuracy = Accuracy::Accurate;
-    let exact = run::switch(&s).unwrap();
-    for (mode, bound) in BOUND {
-        s.accuracy = mode;
-        let r = run::switch(&s).unwrap();
-        for (a, b) in exact.cycles.iter().zip(&r.cycles) {
-            let e = (a.pull_out_pressure - b.pull_out_pressure).abs() / a.pull_out_pressure;
-            assert!(
-                e <= bound,
-                "{mode:?} cycle {}: pull-out error {e:e}",
-                a.cycle
-            );
-            assert!(
-                (a.d_e - b.d_e).abs() <= bound * s.surface.sigma_s,
-                "{mode:?} cycle {}: d_e",
-                a.cycle
-            );
+fn every_mode_meets_its_targets_on_random_mems_scenes() {
+    let mut failures = Vec::new();
+    let mut worst = [(0.0f64, 0.0f64); 3];
+    for (i, s) in scenes(Domain::Mems, 2026, 16).into_iter().enumerate() {
+        let sigma = s.surface.sigma_s;
+        let accurate = run(&s, Accuracy::Accurate, 0).unwrap_or_else(|e| panic!("scene {i}: a plausible MEMS scene failed: {e}\n{s:#?}"));
+        for (k, mode) in [Accuracy::Balanced, Accuracy::Fast].into_iter().enumerate() {
+            let r = run(&s, mode, 0).unwrap_or_else(|e| panic!("scene {i} {mode}: {e}"));
+            let t = mode.targets();
+            let (de, po) = errors(&accurate, &r, sigma);
+            worst[k + 1] = (worst[k + 1].0.max(de), worst[k + 1].1.max(po));
+            if de > t.d_e_tolerance_sigma || po > t.pull_out_tolerance {
+                failures.push(format!("scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}"));
+            }
+            assert_eq!(r.stiction, accurate.stiction || po > 0.0 && r.stiction, "scene {i} {mode}: verdict");
         }
-        let (ea, eb) = (exact.elastic.as_ref().unwrap(), r.elastic.as_ref().unwrap());
-        assert!((ea.d_e - eb.d_e).abs() <= bound * s.surface.sigma_s);
-        assert_eq!(exact.stiction, r.stiction);
-        assert_eq!(exact.accommodated_after, r.accommodated_after);
+        // no spurious jump of d_e between cycles
+        for w in accurate.cycles.windows(2) {
+            let rise = (w[1].d_e - w[0].d_e) / sigma;
+            assert!(rise < 1e-3, "scene {i}: d_e rose by {rise} sigma_s");
+            assert!(w[1].contact_pressure > 0.0);
+        }
+        if i % 4 == 0 {
+            let reference = run(&s, Accuracy::Reference, 0).unwrap();
+            let (de, po) = errors(&reference, &accurate, sigma);
+            worst[0] = (worst[0].0.max(de), worst[0].1.max(po));
+            let t = Accuracy::Accurate.targets();
+            if de > t.d_e_tolerance_sigma || po > t.pull_out_tolerance {
+                failures.push(format!("scene {i} accurate: d_e {de:e} sigma, pull-out {po:e}"));
+            }
+        }
+    }
+    eprintln!("worst (d_e, pull-out): accurate {:?} balanced {:?} fast {:?}", worst[0], worst[1], worst[2]);
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+#[test]
+fn modes_meet_their_targets_on_the_wide_ranges_where_the_model_has_an_answer() {
+    let mut failures = Vec::new();
+    let mut answered = 0;
+    for (i, s) in scenes(Domain::Wide, 7, 10).into_iter().enumerate() {
+        let Ok(accurate) = run(&s, Accuracy::Accurate, 0) else {
+            continue; // e.g. adhesion stronger than any compression: an error, not a number
+        };
+        answered += 1;
+        let sigma = s.surface.sigma_s;
+        for mode in [Accuracy::Balanced, Accuracy::Fast] {
+            let r = run(&s, mode, 0).unwrap_or_else(|e| panic!("wide scene {i} {mode} failed where accurate did not: {e}"));
+            let t = mode.targets();
+            let (de, po) = errors(&accurate, &r, sigma);
+            if de > t.d_e_tolerance_sigma || po > t.pull_out_tolerance {
+                failures.push(format!("wide scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}"));
+            }
+        }
+    }
+    assert!(answered >= 4, "too few wide scenes answered: {answered}");
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+#[test]
+fn the_pull_out_does_not_depend_on_the_curves_written() {
+    for (i, s) in scenes(Domain::Mems, 99, 4).into_iter().enumerate() {
+        let a = run(&s, Accuracy::Fast, 0).unwrap();
+        let b = run(&s, Accuracy::Fast, 17).unwrap();
+        for (x, y) in a.cycles.iter().zip(&b.cycles) {
+            assert_eq!(x.pull_out_pressure, y.pull_out_pressure, "scene {i} cycle {}", x.cycle);
+            assert_eq!(x.d_e, y.d_e);
+            // and no written sample lies below the pull-out found
+            let lowest = y.unloading.iter().map(|p| p.pressure).fold(0.0, f64::min);
+            assert!(-lowest <= y.pull_out_pressure * (1.0 + 1e-9), "scene {i}");
+        }
+    }
+}
+
+/// A user law that declares no kinks, on the paper's surface under the paper's impact:
+/// the fast and balanced modes stay within their targets of the accurate one.
+#[test]
+fn a_user_law_without_declared_kinks_meets_the_targets() {
+    use stiction::contact_core::{paper, SurfaceLaw};
+    use stiction::gw_surface::{GreenwoodWilliamson, Roughness};
+    use stiction::switch_1d::{run_cycles, CycleOptions, Impact, ImpactFilm};
+    let rough = Roughness { sigma_s: paper::SIGMA_S, asperity_density: paper::ASPERITY_DENSITY };
+    let impact = Impact {
+        energy: 0.5,
+        film: ImpactFilm { thickness: paper::FILM_THICKNESS, youngs_modulus: 410e9 },
+        contact_area_fraction: 1.0,
+        restoring_pressure: 16_880.0,
+    };
+    let solve = |mode: Accuracy| {
+        let gw = GreenwoodWilliamson::new(custom_law::ru_asperity(0.5e-9), rough, mode.quadrature(0.0)).unwrap();
+        let opts = CycleOptions { cycles: 2, unloading_points: 0, loading_points: 0, precision: mode.precision(16_880.0), ..Default::default() };
+        run_cycles(&gw, gw.virgin(), impact, opts, &mut |_| {}).unwrap()
+    };
+    let accurate = solve(Accuracy::Accurate);
+    for mode in [Accuracy::Balanced, Accuracy::Fast] {
+        let r = solve(mode);
+        let t = mode.targets();
+        for (a, b) in accurate.cycles.iter().zip(&r.cycles) {
+            let de = (a.d_e() - b.d_e()).abs() / paper::SIGMA_S;
+            let po = (a.unloading.pull_out_pressure - b.unloading.pull_out_pressure).abs() / a.unloading.pull_out_pressure;
+            assert!(de <= t.d_e_tolerance_sigma && po <= t.pull_out_tolerance, "{mode}: d_e {de:e}, pull-out {po:e}");
+        }
     }
 }

@@ -4,12 +4,21 @@
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
+/// Runs the binary with `args` in the temporary folder.
 pub fn stiction(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_stiction"))
         .args(args)
         .current_dir(std::env::temp_dir())
         .output()
         .expect("run stiction")
+}
+
+/// A fresh temporary folder for one test.
+pub fn temp_dir(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stiction-tests-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
 }
 
 /// Writes `bytes` to a fresh temporary file and returns its path.
@@ -21,11 +30,32 @@ pub fn temp_file(tag: &str, bytes: &[u8]) -> PathBuf {
     p
 }
 
+/// Standard output as JSON (the run must succeed).
 pub fn json(out: &Output) -> serde_json::Value {
-    assert!(
-        out.status.success(),
-        "stderr: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert!(out.status.success(), "stderr: {}", String::from_utf8_lossy(&out.stderr));
     serde_json::from_slice(&out.stdout).expect("valid JSON")
+}
+
+/// True if the JSON tree holds a null anywhere.
+pub fn has_null(v: &serde_json::Value) -> bool {
+    match v {
+        serde_json::Value::Null => true,
+        serde_json::Value::Array(a) => a.iter().any(has_null),
+        serde_json::Value::Object(o) => o.values().any(has_null),
+        _ => false,
+    }
+}
+
+/// A scene of `kind` printed by the binary, with `edits` (key prefix, new line) applied.
+pub fn scene_with(kind: &str, edits: &[(&str, &str)]) -> String {
+    let text = String::from_utf8(stiction(&["scene", "--print", kind]).stdout).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    for (key, line) in edits {
+        let pos = lines
+            .iter()
+            .position(|l| l.trim_start().starts_with(&format!("{key} =")))
+            .unwrap_or_else(|| panic!("no key {key} in the {kind} scene"));
+        lines[pos] = line.to_string();
+    }
+    lines.join("\n") + "\n"
 }

@@ -1,6 +1,8 @@
 //! `cargo xtask verify [--update]`: solves every embedded scene and compares its curves
 //! and figures with the insta snapshots in `xtask/snapshots/`.
-//! `cargo xtask tradeoff`: measures the speed/accuracy trade (docs/performance.md).
+//! `cargo xtask tradeoff`: the speed/accuracy trade of the paper's switch, per mode.
+//! `cargo xtask accuracy [--scenes N] [--seed S]`: each mode's error and speed-up over
+//! random scenes of the documented domains (docs/performance.md).
 //!
 //! Tolerance: snapshots store numbers rounded to 7 significant digits. A scene passes when
 //! every number agrees with its snapshot within 1e-6 relative, or within 1e-10 of the
@@ -8,12 +10,26 @@
 //! insta prints a readable line diff and verify exits non-zero. `--update` rewrites the
 //! snapshots that are out of tolerance (review the diff in git).
 
+mod accuracy;
 mod tradeoff;
+
+fn report(r: Result<(), String>) -> ExitCode {
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
 
 use serde_json::Value;
 use std::process::ExitCode;
-use stiction::run;
-use stiction::scene::{self, AsperityScene, SurfaceScene, SwitchScene};
+use stiction::commands::asperity::AsperityCommand;
+use stiction::commands::surface::SurfaceCommand;
+use stiction::commands::{md, switch, Command};
+use stiction::render::Format;
+use stiction::scene::{self, AsperityScene, Loaded, Scene, SurfaceScene, SwitchScene};
 
 const DIGITS: i32 = 7;
 /// Points per curve in the snapshots: enough to see every branch, few enough to review.
@@ -81,40 +97,40 @@ fn committed(name: &str) -> Option<Value> {
     serde_json::from_str(body).ok()
 }
 
+/// Every embedded scene solved as the CLI solves it, with `POINTS`-point curves; the
+/// scene echo is left out (it is the committed scene file itself).
 fn scenes() -> Result<Vec<(String, Value)>, String> {
-    let err = |e: run::RunError| e.to_string();
+    let err = |e: stiction::Error| e.to_string();
+    let strip = |mut v: Value| {
+        if let Some(o) = v.as_object_mut() {
+            o.remove("scene");
+        }
+        v
+    };
     let mut out = Vec::new();
     for lambda in [0.01, 0.1, 0.5, 0.9, 1.0, 2.0, 10.0, 100.0] {
-        let r = run::md(lambda, POINTS, 5.0).map_err(err)?;
-        out.push((
-            format!("md_lambda_{lambda}"),
-            serde_json::to_value(r).map_err(|e| e.to_string())?,
-        ));
+        let r = md::curve(lambda, POINTS, 5.0).map_err(err)?;
+        out.push((format!("md_lambda_{lambda}"), serde_json::to_value(r).map_err(|e| e.to_string())?));
     }
-    let mut a: AsperityScene =
-        scene::parse("asperity", scene::DEFAULT_ASPERITY).map_err(|e| e.to_string())?;
+    let mut a: AsperityScene = scene::parse("asperity", scene::DEFAULT_ASPERITY).map_err(|e| e.to_string())?;
     a.points = POINTS;
-    out.push((
-        "asperity_fig2".into(),
-        serde_json::to_value(run::asperity(&a).map_err(err)?).unwrap(),
-    ));
-    let mut s: SurfaceScene =
-        scene::parse("surface", scene::DEFAULT_SURFACE).map_err(|e| e.to_string())?;
+    a.validate("asperity").map_err(|e| e.to_string())?;
+    let cmd = AsperityCommand { scene: None, delta_max: vec![], format: Format::Json, plot: None };
+    let r = cmd.run(&Loaded { file: "asperity".into(), scene: a, is_paper: true }).map_err(err)?;
+    out.push(("asperity_fig2".into(), strip(serde_json::to_value(r).unwrap())));
+    let mut s: SurfaceScene = scene::parse("surface", scene::DEFAULT_SURFACE).map_err(|e| e.to_string())?;
     s.points = POINTS;
-    out.push((
-        "surface_ru".into(),
-        serde_json::to_value(run::surface(&s).map_err(err)?).unwrap(),
-    ));
-    let mut w: SwitchScene =
-        scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
+    s.validate("surface").map_err(|e| e.to_string())?;
+    let cmd = SurfaceCommand { scene: None, unload_from: None, accuracy: None, format: Format::Json, plot: None };
+    let r = cmd.run(&Loaded { file: "surface".into(), scene: s, is_paper: true }).map_err(err)?;
+    out.push(("surface_ru".into(), strip(serde_json::to_value(r).unwrap())));
+    let mut w: SwitchScene = scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
     w.points = POINTS;
-    let r = run::switch(&w).map_err(err)?;
-    let mut v = serde_json::to_value(&r).unwrap();
+    w.validate("switch").map_err(|e| e.to_string())?;
+    let r = switch::run(&Loaded { file: "switch".into(), scene: w, is_paper: true }, false).map_err(err)?;
+    let mut v = strip(serde_json::to_value(&r).unwrap());
     // the elastic comparison gets a snapshot of its own
-    let elastic = v
-        .as_object_mut()
-        .and_then(|o| o.remove("elastic"))
-        .unwrap_or(Value::Null);
+    let elastic = v.as_object_mut().and_then(|o| o.remove("elastic")).unwrap_or(Value::Null);
     out.push(("switch_fig4".into(), v));
     out.push(("switch_elastic_comparison".into(), elastic));
     Ok(out)
@@ -130,17 +146,10 @@ fn main() -> ExitCode {
     {
         ["verify"] => false,
         ["verify", "--update"] => true,
-        ["tradeoff"] => {
-            return match tradeoff::main() {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::from(1)
-                }
-            };
-        }
+        ["tradeoff"] => return report(tradeoff::main()),
+        ["accuracy", rest @ ..] => return report(accuracy::main(rest)),
         _ => {
-            eprintln!("usage: cargo xtask verify [--update] | cargo xtask tradeoff");
+            eprintln!("usage: cargo xtask verify [--update] | cargo xtask tradeoff | cargo xtask accuracy [--scenes N] [--seed S]");
             return ExitCode::from(2);
         }
     };

@@ -3,7 +3,6 @@ use contact_core::{
     AdhesionLaw, AsperityHistory, AsperityModel, Jumps, LawError, Path, PlasticState,
     PlasticityLaw,
 };
-use serde::Serialize;
 
 /// One asperity: a plasticity law `P` and an adhesion law `A` composed as in the paper's
 /// section 2.2. The adhesion law sees the deformed asperity as an elastic sphere of radius
@@ -35,7 +34,8 @@ pub struct ElastoPlasticAsperity<P, A> {
 }
 
 /// The elastic sphere the adhesion law sees at one interference.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct EffectiveSphere {
     /// R_eff (m), eq 12.
     pub radius: f64,
@@ -46,7 +46,8 @@ pub struct EffectiveSphere {
 }
 
 /// The most tensile force on a retraction, and where it occurs.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PullOff {
     /// Interference (m).
     pub delta: f64,

@@ -1,6 +1,5 @@
 use crate::error::PlasticError;
 use contact_core::{positive, Material, Pair, PlasticState, PlasticityLaw};
-use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// Upper end of delta_max/delta_CP covered by the finite-element fits of eqs 4-5
@@ -9,8 +8,9 @@ pub const FIT_RANGE_MAX: f64 = 110.0;
 
 /// Which modulus enters the yield onset, eq 1. There is no default: the choice moves the
 /// paper switch's pull-out by about 100x (`docs/theory.md` section 2.1).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum YieldModulus {
     /// The Hertz composite modulus E* (Kogut-Etsion, Brizmer): keeps eq 3 equal to the
     /// Hertz force at delta_CP.
@@ -40,7 +40,8 @@ impl YieldModulus {
 /// assert_eq!(paper.c2(10.0), 0.0); // c2 vanishes at omega = 10 with the paper's constants
 /// assert!((paper.c1(0.0) - (0.22 + 0.6242)).abs() < 1e-15);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EffectiveRadiusFit {
     /// [a1, a2, a3] of c1.
     pub c1: [f64; 3],
@@ -111,8 +112,9 @@ impl EffectiveRadiusFit {
 }
 
 /// Which body of a [`Pair`] governs plasticity: the one that yields first.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum YieldingBody {
     /// Body 1, the asperity-carrying surface.
     Asperity,

@@ -1,9 +1,9 @@
 use crate::error::{positive, CoreError};
-use serde::{Deserialize, Serialize};
 
 /// The constants of an isotropic elastic-perfectly-plastic material, SI units, before
 /// validation: the argument of [`Material::new`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MaterialProps {
     /// Young's modulus E (Pa, > 0).
     pub youngs_modulus: f64,
@@ -23,7 +23,8 @@ pub struct MaterialProps {
 /// assert_eq!(ru.compliance(), (1.0 - 0.3 * 0.3) / 410e9);
 /// # Ok::<(), contact_core::CoreError>(())
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Material {
     props: MaterialProps,
 }

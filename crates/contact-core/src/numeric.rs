@@ -548,19 +548,34 @@ const END_SAFETY: f64 = 2.0;
 /// heights carries a few tens of eps.
 pub const NOISE: f64 = 64.0 * f64::EPSILON;
 
-/// What [`integrate`] aims for: an error estimate at most `max(rel * integral of |f|, abs)`.
+/// What [`integrate`] aims for: an error estimate at most
+/// `max(rel * |integral|, rel_of_abs * integral of |f|, abs)`, and never below the
+/// integrand's noise ([`NOISE`] times the integral of |f|).
+///
+/// `rel` is relative to the result itself, which matters where positive and negative
+/// parts cancel (an adhesive pressure near its pull-out); `rel_of_abs` bounds the work
+/// spent where the result is near zero.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QuadTolerance {
-    /// Relative to the integral of |f| (the scale of the terms summed, not of their sum).
+    /// Relative to |integral|.
     pub rel: f64,
+    /// Relative to the integral of |f| (the scale of the terms summed).
+    pub rel_of_abs: f64,
     /// Absolute floor, in the units of the integral.
     pub abs: f64,
     /// Panels no wider than this at the start (in x; 0 for no limit); refinement then goes
     /// where the estimate is large.
     pub max_width: f64,
-    /// Refinement cap; reaching it with the target unmet is [`CoreError::Quadrature`].
+    /// Refinement cap. Reaching it, or panels too narrow to halve, with the estimate within
+    /// [`STAGNATION_ALLOWANCE`] of the target returns the value with its honest (larger)
+    /// estimate: the integrand's noise is then the limit. Beyond that it is
+    /// [`CoreError::Quadrature`].
     pub max_panels: usize,
 }
+
+/// How far above its target a quadrature stopped by its panel cap or by rounding may end
+/// and still return its value (with the error estimate it reached).
+pub const STAGNATION_ALLOWANCE: f64 = 1e3;
 
 #[derive(Debug)]
 struct Panel {
@@ -595,7 +610,7 @@ struct Panel {
 /// use contact_core::CoreError;
 /// // |x - 0.3137| on [0, 1], with the kink nowhere declared
 /// let rule = AdaptiveRule::new(6)?;
-/// let tol = QuadTolerance { rel: 1e-12, abs: 0.0, max_width: 0.0, max_panels: 10_000 };
+/// let tol = QuadTolerance { rel: 1e-12, rel_of_abs: 1e-12, abs: 0.0, max_width: 0.0, max_panels: 10_000 };
 /// let r = integrate("kink", |x: f64| Ok::<_, CoreError>((x - 0.3137).abs()), &[0.0, 1.0], false, &rule, tol)?;
 /// let exact = 0.5 * (0.3137f64.powi(2) + 0.6863f64.powi(2));
 /// assert!((r.value - exact).abs() < 1e-12);
@@ -810,12 +825,27 @@ pub fn integrate_panels<E: From<CoreError>>(
         .map(|(i, p)| (Key(error_of(p)), i))
         .collect();
     let mut alive = vec![true; panels.len()];
-    let (mut abs, mut error) = panels
+    let (mut abs, mut error, mut value_now) = panels
         .iter()
-        .fold((0.0, 0.0), |s, p| (s.0 + p.abs, s.1 + error_of(p)));
+        .fold((0.0, 0.0, 0.0), |s, p| (s.0 + p.abs, s.1 + error_of(p), s.2 + p.left + p.right));
     loop {
-        let target = (tol.rel * abs).max(tol.abs).max(2.0 * floor_rel * abs);
-        if error <= target {
+        let target = (tol.rel * value_now.abs())
+            .max(tol.rel_of_abs * abs)
+            .max(tol.abs)
+            .max(2.0 * floor_rel * abs);
+        let stagnated = heap.len() >= tol.max_panels || heap.peek().is_some_and(|&(_, i)| {
+            let m = 0.5 * (panels[i].a + panels[i].b);
+            !(m > panels[i].a && m < panels[i].b)
+        });
+        if stagnated && error > STAGNATION_ALLOWANCE * target {
+            return Err(CoreError::Quadrature {
+                what,
+                achieved: error,
+                tolerance: target,
+            }
+            .into());
+        }
+        if error <= target || stagnated {
             // sums afresh, free of the drift of the running totals
             let mut live: Vec<&Panel> = panels
                 .iter()
@@ -858,14 +888,6 @@ pub fn integrate_panels<E: From<CoreError>>(
         };
         let (a, b, k) = (panels[worst].a, panels[worst].b, panels[worst].k);
         let m = 0.5 * (a + b);
-        if heap.len() + 1 >= tol.max_panels || !(m > a && m < b) {
-            return Err(CoreError::Quadrature {
-                what,
-                achieved: error,
-                tolerance: target,
-            }
-            .into());
-        }
         alive[worst] = false;
         let (fa, fm, fb, pl, pr) = {
             let p = &panels[worst];
@@ -875,6 +897,9 @@ pub fn integrate_panels<E: From<CoreError>>(
         let left = split(&mut g, k, (a, m), (fa, fm), pl)?;
         let right = split(&mut g, k, (m, b), (fm, fb), pr)?;
         abs += left.abs + right.abs - panels[worst].abs;
+        value_now += left.left + left.right + right.left + right.right
+            - panels[worst].left
+            - panels[worst].right;
         error += error_of(&left) + error_of(&right) - error_of(&panels[worst]);
         for child in [left, right] {
             heap.push((Key(error_of(&child)), panels.len()));
@@ -1152,6 +1177,7 @@ mod tests {
     fn tol(rel: f64) -> QuadTolerance {
         QuadTolerance {
             rel,
+            rel_of_abs: rel,
             abs: 0.0,
             max_width: 0.0,
             max_panels: 10_000,

@@ -1,5 +1,4 @@
 use crate::error::LawError;
-use serde::{Deserialize, Serialize};
 
 /// Where a hysteretic law is on its loop. Adhesive contact is path dependent: between
 /// jump-out and jump-in the force depends on whether the bodies came from far away or
@@ -7,7 +6,8 @@ use serde::{Deserialize, Serialize};
 ///
 /// `from` is the extreme point of the current excursion in the coordinate of the law:
 /// an interference (m) for sphere and asperity laws, a separation (m) for surface laws.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Path {
     /// Coming from far away (or reloading).
     Approach,
@@ -59,7 +59,8 @@ pub trait AdhesionLaw {
 }
 
 /// Deformed state of an asperity after loading to `delta_max` (paper eqs 4-5).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PlasticState {
     /// Largest interference reached (m).
     pub delta_max: f64,
@@ -87,7 +88,8 @@ pub trait PlasticityLaw {
 
 /// History of one asperity: the largest interference it has ever reached (m). A value
 /// at or below zero means it has never been pressed.
-#[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AsperityHistory {
     /// Largest interference reached (m).
     pub delta_max: f64,
@@ -141,7 +143,8 @@ pub trait AsperityModel {
 }
 
 /// A value with its error estimate (same units).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Estimate {
     /// The value.
     pub value: f64,
@@ -153,7 +156,8 @@ pub struct Estimate {
 /// samples by: nothing of interest in the law is narrower than `finest`, `roughness` is
 /// the scale of its bulk (sigma_s for a Greenwood-Williamson surface), and below `deepest`
 /// the law leaves its ground (asperities pressed beyond their own radius).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct LengthScales {
     /// The narrowest feature (jump distances, interaction range, elastic recovery).
     pub finest: f64,

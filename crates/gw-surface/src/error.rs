@@ -7,6 +7,16 @@ pub enum GwError {
     /// A parameter outside its domain, or a quadrature/root failure.
     #[error("surface: {0}")]
     Core(#[from] CoreError),
+    /// The asperity law returned a value that is not a number (NaN or infinite).
+    #[error("the asperity law returned {value} (not a finite force) at height h = {height:e} m, separation d = {d:e} m")]
+    LawNotFinite {
+        /// Asperity height (m).
+        height: f64,
+        /// Separation (m).
+        d: f64,
+        /// What it returned.
+        value: f64,
+    },
     /// The asperity law failed at a height.
     #[error("asperity law failed at height h = {height:e} m, separation d = {d:e} m: {source}")]
     Asperity {

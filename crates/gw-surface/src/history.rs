@@ -1,8 +1,8 @@
-use serde::Serialize;
 
 /// What a surface remembers: the largest interference delta_max(h) each asperity of
 /// initial height h has reached.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum GwHistory {
     /// Loaded only by one flat: delta_max(h) = h - deepest. The whole history is one number.
     Flat {
@@ -48,7 +48,8 @@ impl GwHistory {
 
 /// delta_max(h) sampled on a uniform height grid, linear in between, and extended by
 /// its end values' slopes outside (a straight line of slope 1 for a flat's history).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct HeightTable {
     h0: f64,
     dh: f64,

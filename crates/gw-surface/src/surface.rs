@@ -5,7 +5,6 @@ use contact_core::{
     positive, AsperityHistory, AsperityModel, CoreError, Estimate, LawError, LengthScales, Path,
     SurfaceLaw,
 };
-use serde::{Deserialize, Serialize};
 use statrs::distribution::{Continuous, ContinuousCDF, Normal};
 
 /// Heights are integrated over |h| <= TAIL_SIGMAS sigma_s. The Gaussian mass left out,
@@ -18,7 +17,8 @@ const START_PANEL_SIGMAS: f64 = 2.0;
 
 /// The roughness of the equivalent surface against a smooth flat (eq 14): the argument of
 /// [`GreenwoodWilliamson::new`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Roughness {
     /// Standard deviation of asperity heights sigma_s (m).
     pub sigma_s: f64,
@@ -28,8 +28,11 @@ pub struct Roughness {
 
 /// How the height integral is evaluated: globally adaptive nested Gauss-Legendre
 /// ([`contact_core::numeric::integrate`]) with error control in every setting. The pressure's
-/// error estimate meets `max(rel_tol * N * integral of |F| phi, abs_tol)`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// error estimate meets `max(rel_tol |p|, 1e-3 rel_tol N integral of |F| phi, abs_tol)`:
+/// relative to the pressure itself, also where compressive and adhesive asperities nearly
+/// cancel (at a pull-out), down to a thousandth of the target relative to the forces summed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Quadrature {
     /// Relative to the integral of |F| phi (the scale of the asperity forces summed).
     pub rel_tol: f64,
@@ -230,12 +233,21 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
     }
 
     fn force_at(&self, h: f64, d: f64, history: &GwHistory, path: Path) -> Result<f64, GwError> {
-        self.law(
+        let f = self.law(
             h,
             d,
             self.asperity
                 .force(h - d, self.history_at(history, h), Self::asperity_path(h, path)),
-        )
+        )?;
+        if f.is_finite() {
+            Ok(f)
+        } else {
+            Err(GwError::LawNotFinite {
+                height: h,
+                d,
+                value: f,
+            })
+        }
     }
 
     /// Lowest height where `g` (increasing in h) turns non-negative within [lo, hi];
@@ -385,6 +397,9 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         let n = self.density();
         let tol = QuadTolerance {
             rel: rel_tol,
+            // where the pressure nearly cancels, stop at a thousandth of the target relative
+            // to the forces summed
+            rel_of_abs: 1e-3 * rel_tol,
             abs: q.abs_tol / n,
             max_width: START_PANEL_SIGMAS,
             max_panels: 20_000,
@@ -498,9 +513,11 @@ impl<M: AsperityModel> SurfaceLaw for GreenwoodWilliamson<M> {
         })
     }
 
+    /// The deepest separation reached, where reloading turns into virgin loading (none for
+    /// asperities that never yield: their loading does not depend on the history).
     fn kinks(&self, history: &GwHistory) -> Vec<f64> {
         match history.deepest() {
-            Some(d) if d.is_finite() => vec![d],
+            Some(d) if d.is_finite() && self.asperity.delta_cp().is_finite() => vec![d],
             _ => Vec::new(),
         }
     }

@@ -1,3 +1,4 @@
+//! Cost of one Maugis-Kim point (a new curve per point, as the asperity law does).
 use criterion::{criterion_group, criterion_main, Criterion};
 use maugis_kim::MdCurve;
 use std::hint::black_box;

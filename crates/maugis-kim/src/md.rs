@@ -18,7 +18,6 @@ use crate::error::MkError;
 use contact_core::numeric::{brent_from, Sample, Tolerance};
 use contact_core::{finite, positive, CoreError};
 use contact_core::Path;
-use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
@@ -26,9 +25,15 @@ use std::sync::OnceLock;
 /// junction of the two branches, (16/9)(1 - 1/pi) lambda_c^3 = 1.
 pub const LAMBDA_CRITICAL: f64 = 0.937_947_457_210_712_3;
 
+#[cfg(feature = "serde")]
+fn is_infinite(v: &f64) -> bool {
+    v.is_infinite()
+}
+
 /// Which branch a point lies on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Branch {
     /// a = 0, c > 0 (Kim extension).
     NonContact,
@@ -37,7 +42,8 @@ pub enum Branch {
 }
 
 /// One point of the curve, nondimensional (eq 7).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct MdPoint {
     /// Contact radius A.
     pub a: f64,
@@ -48,7 +54,9 @@ pub struct MdPoint {
     /// Force Fbar (compressive > 0).
     pub force: f64,
     /// The contact-branch parameter s = sqrt(m^2 - 1) (infinite on the non-contact
-    /// branch). Reported because m = c/a rounded to a double cannot resolve s < 1e-8.
+    /// branch, where it is left out of serialised points). Reported because m = c/a
+    /// rounded to a double cannot resolve s < 1e-8.
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "is_infinite"))]
     pub s: f64,
     /// Which branch the point lies on.
     pub branch: Branch,
@@ -362,6 +370,11 @@ impl MdCurve {
         }
         let turning = self.turning()?;
         if delta < turning.point.delta {
+            // within rounding of the turning point (at extreme lambda the jump-in and the
+            // turning point differ by less than a few ulps): the turning point itself
+            if turning.point.delta - delta <= 16.0 * f64::EPSILON * turning.point.delta.abs().max(1.0) {
+                return Ok(turning.point);
+            }
             return Err(MkError::BelowTurningPoint {
                 delta,
                 turning: turning.point.delta,

@@ -4,10 +4,10 @@ use contact_core::numeric::{
     Interpolant, PanelNodes, QuadTolerance, Sample, Tolerance,
 };
 use contact_core::{positive, CoreError, LengthScales, Path, SurfaceLaw};
-use serde::Serialize;
 
 /// One point of a pressure curve: separation d (m), pressure (Pa, compressive > 0).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PressurePoint {
     /// Separation (m).
     pub d: f64,
@@ -17,7 +17,8 @@ pub struct PressurePoint {
 
 /// The film that stores elastic energy at the end of impact (eq 17): thickness t_s (m)
 /// and Young's modulus E (Pa).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct ImpactFilm {
     /// t_s (m).
     pub thickness: f64,
@@ -35,7 +36,8 @@ impl ImpactFilm {
 /// The accuracy the switch computations aim for. The surface's own pressure error (its
 /// quadrature) adds to these and is reported with them; configure both together (the
 /// root package's accuracy modes do).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Precision {
     /// d_e to this fraction of the surface's roughness length scale.
     pub d_e: f64,
@@ -58,7 +60,8 @@ impl Default for Precision {
 }
 
 /// The end of impact (eq 17) with its error estimate.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct EndOfImpact {
     /// Separation d_e (m).
     pub d_e: f64,
@@ -155,9 +158,10 @@ fn solve_eq17<S: SurfaceLaw>(
     let tol_d = precision.d_e * sigma;
     let rule = AdaptiveRule::new(ENERGY_NODES)?;
     // energy error -> d_e error: delta d_e ~ delta W / p(d_e) <= delta W (top - d_e)/E_I,
-    // with top - d_e about 20 sigma
+    // with top - d_e about 20 sigma; checked a posteriori by the error estimate
     let quad = QuadTolerance {
-        rel: 0.05 * precision.d_e * tighten,
+        rel: 0.0,
+        rel_of_abs: 0.05 * precision.d_e * tighten,
         abs: 0.05 * precision.d_e * tighten * energy,
         max_width: 0.0,
         max_panels: 4000,
@@ -176,47 +180,29 @@ fn solve_eq17<S: SurfaceLaw>(
         integrate_panels("eq 17 energy integral", |x| ap.p(x), &breaks, false, &rule, quad)
     };
     let mut hi = top;
-    let mut p_hi = 0.0;
     let mut work = 0.0; // integral of p_L from hi to top
     let mut work_error = 0.0;
     let mut step = 0.25 * sigma;
     let floor = scales.deepest.max(top - DEPTH_LIMIT * sigma);
     while hi > floor {
         let lo = hi - step;
-        let (int, panels) = integral(&mut ap, lo, hi)?;
-        let p_lo = panels.first().map_or(0.0, |p| p.points[0].1);
-        let g_lo = work + int.value + film.energy(p_lo) - energy;
-        if p_lo > 0.0 && g_lo >= 0.0 {
-            // the closure lies in this step, in its compressive part
-            let (top_c, w_top, mut panels) = if p_hi > 0.0 {
-                (hi, work, panels)
-            } else {
-                // the pressure turns compressive inside the step: split there
-                let z = brent_from(
-                    "where the approach pressure turns compressive",
-                    |x| ap.p(x),
-                    Sample { x: lo, f: p_lo },
-                    Sample { x: hi, f: p_hi },
-                    Tolerance::absolute(1e-3 * tol_d).with_max_iter(200),
-                )?;
-                let (upper, _) = integral(&mut ap, z, hi)?;
-                let (lower, lower_panels) = integral(&mut ap, lo, z)?;
-                work_error += upper.error + lower.error;
-                (z, work + upper.value, lower_panels)
-            };
-            work_error += if top_c == hi { int.error } else { 0.0 };
-            panels.sort_by(|a, b| b.a.total_cmp(&a.a));
-            let (x, panel_top, w_panel_top) =
-                root_on_panels(&panels, top_c, w_top, film, energy, tol_d)?;
+        let (int, mut panels) = integral(&mut ap, lo, hi)?;
+        panels.sort_by(|a, b| b.a.total_cmp(&a.a));
+        if let Some(closure) = first_closure(&panels, work, film, energy, tol_d)? {
+            work_error += int.error;
             // verify with exact evaluations: Newton on G(x) = W(x) + film(p(x)) - E_I
-            let mut x = x;
+            let Closure {
+                mut x,
+                panel_top,
+                work_above,
+            } = closure;
             let mut correction = f64::INFINITY;
             let mut p_x = 0.0;
             let mut slope = 0.0;
             for _ in 0..6 {
                 p_x = ap.p(x)?;
                 let (w, _) = integral(&mut ap, x, panel_top)?;
-                let g = w_panel_top + w.value + film.energy(p_x) - energy;
+                let g = work_above + w.value + film.energy(p_x) - energy;
                 // dG/dx = -p - (p t_s/E) |dp/dx|; dp/dx from the interpolant
                 let dp = panel_slope(&panels, x);
                 slope = -p_x + film.thickness / film.youngs_modulus * p_x * dp;
@@ -237,10 +223,10 @@ fn solve_eq17<S: SurfaceLaw>(
                 pressure: p_x,
             });
         }
+        let p_lo = panels.last().map_or(0.0, |p| p.points[0].1);
         work += int.value;
         work_error += int.error;
         hi = lo;
-        p_hi = p_lo;
         // grow the step geometrically towards the depth the remaining energy needs
         let remaining = if p_lo > 0.0 {
             (energy - work) / p_lo
@@ -256,46 +242,87 @@ fn solve_eq17<S: SurfaceLaw>(
     })
 }
 
-/// The root of G(x) = W(x) + film(p(x)) - E_I on the interpolants of `panels` (sorted from
-/// the top down, below `top` where the work is `w_top`): returns x and the top of its
-/// panel with the work there.
-fn root_on_panels(
+/// Where the energy balance first closes with a compressive pressure, on the
+/// interpolants of a step's panels.
+struct Closure {
+    /// The separation (to be polished).
+    x: f64,
+    /// The top of its panel ...
+    panel_top: f64,
+    /// ... and the work of p_L from there to the first touch.
+    work_above: f64,
+}
+
+/// Walks the panels of a step from the top down (`work`: the work above the step), sampling
+/// each panel's interpolant at its points, and returns the first closure of
+/// G(x) = W(x) + film(p(x)) - E_I at which p(x) > 0: between the last sample where the
+/// balance is open or the pressure tensile and the first where it is closed and
+/// compressive. Samples at the rule's nodes resolve every sign change the quadrature
+/// resolves, whatever the step's length.
+fn first_closure(
     panels: &[PanelNodes],
-    top: f64,
-    w_top: f64,
+    mut work: f64,
     film: ImpactFilm,
     energy: f64,
     tol_d: f64,
-) -> Result<(f64, f64, f64), SwitchError> {
-    let mut w = w_top;
-    let mut b = top;
+) -> Result<Option<Closure>, SwitchError> {
     for p in panels {
-        let fa = p.points[0].1;
-        let g_a = w + p.value + film.energy(fa) - energy;
-        if g_a >= 0.0 {
-            let poly = p.interpolant();
-            let g = |x: f64| {
-                Ok::<_, CoreError>(w + poly.integral(x, p.b) + film.energy(poly.eval(x)) - energy)
-            };
-            let g_b = g(p.b)?;
-            let x = if g_b >= 0.0 {
-                p.b
-            } else {
-                brent_from(
-                    "end of impact, eq 17",
-                    g,
-                    Sample { x: p.a, f: g_a },
-                    Sample { x: p.b, f: g_b },
-                    Tolerance::absolute(1e-3 * tol_d).with_max_iter(200),
-                )?
-            };
-            return Ok((x, p.b, w));
+        let poly = p.interpolant();
+        let g = |x: f64| w_plus(&poly, work, x, p.b) + film.energy(poly.eval(x)) - energy;
+        // samples from the top of the panel down
+        let mut prev: Option<(f64, f64, f64)> = None; // (x, p, G)
+        for &(x, px) in p.points.iter().rev() {
+            let gx = g(x);
+            if px > 0.0 && gx >= 0.0 {
+                let Some((xp, pp, gp)) = prev else {
+                    // closed at the panel's top: the previous panel's bottom sample was not,
+                    // so the closure is at this boundary
+                    return Ok(Some(Closure {
+                        x,
+                        panel_top: p.b,
+                        work_above: work,
+                    }));
+                };
+                // bracket [x, xp]: if the pressure was tensile at xp, start where it turns
+                let (top_x, top_g) = if pp > 0.0 {
+                    (xp, gp)
+                } else {
+                    let z = brent_from(
+                        "where the approach pressure turns compressive",
+                        |t| Ok::<_, CoreError>(poly.eval(t)),
+                        Sample { x, f: px },
+                        Sample { x: xp, f: pp },
+                        Tolerance::absolute(1e-3 * tol_d).with_max_iter(200),
+                    )?;
+                    (z, g(z))
+                };
+                let root = if top_g >= 0.0 {
+                    top_x
+                } else {
+                    brent_from(
+                        "end of impact, eq 17",
+                        |t| Ok::<_, CoreError>(g(t)),
+                        Sample { x, f: gx },
+                        Sample { x: top_x, f: top_g },
+                        Tolerance::absolute(1e-3 * tol_d).with_max_iter(200),
+                    )?
+                };
+                return Ok(Some(Closure {
+                    x: root,
+                    panel_top: p.b,
+                    work_above: work,
+                }));
+            }
+            prev = Some((x, px, gx));
         }
-        w += p.value;
-        b = p.a;
+        work += p.value;
     }
-    // rounding put the closure at the very bottom of the step
-    Ok((b, b, w))
+    Ok(None)
+}
+
+/// Work above the panel plus the interpolant's integral from x to the panel's top.
+fn w_plus(poly: &Interpolant, work: f64, x: f64, b: f64) -> f64 {
+    work + poly.integral(x, b)
 }
 
 /// dp/dx of the interpolant of the panel holding x (x in the step).
@@ -309,7 +336,8 @@ fn panel_slope(panels: &[PanelNodes], x: f64) -> f64 {
 }
 
 /// The unloading branch of one cycle.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Unloading {
     /// Magnitude of the most tensile unloading pressure (Pa, >= 0).
     pub pull_out_pressure: f64,
@@ -349,9 +377,10 @@ pub fn pull_out_grid(d_e: f64, reach: f64, scales: LengthScales) -> Vec<f64> {
 /// Unloading from `d_e` for a surface whose `history` already includes the loading to
 /// `d_e`: the pull-out pressure (the most tensile unloading pressure), found on
 /// [`pull_out_grid`] with the surface's scan pressure and refined with its accurate
-/// pressure (best local minima, each to a bracket tolerance whose square is 1e-2 of the
-/// precision's pull-out target: the value error at a smooth minimum is quadratic in the
-/// location error); and the curve at `points` separations evenly from d_e to the
+/// pressure (best local minima, each to a tenth of the precision's pull-out target relative
+/// to its bracket: a minimum may sit on a kink of the pressure, where the surface's contact
+/// edge turns from jump-in to jump-out, and the value error is then linear in the location
+/// error; Brent's parabolic steps make a smooth minimum cheap all the same); and the curve at `points` separations evenly from d_e to the
 /// reach (none if 0), which never affects the pull-out.
 pub fn unload<S: SurfaceLaw>(
     surface: &S,
@@ -373,7 +402,7 @@ pub fn unload<S: SurfaceLaw>(
         |x| Ok::<_, SwitchError>(surface.pressure(x, history, path)?),
         &grid,
         &ys,
-        Tolerance::relative((1e-2 * precision.pull_out).sqrt().clamp(1e-8, 1e-2)),
+        Tolerance::relative((0.1 * precision.pull_out).clamp(1e-12, 1e-3)),
     )?;
     let (pull, at, error) = if m.value < 0.0 {
         let e = surface.pressure_estimate(m.x, history, path)?;
@@ -398,7 +427,8 @@ pub fn unload<S: SurfaceLaw>(
 }
 
 /// What an impact brings to the contact, and what the spring opposes.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Impact {
     /// Impact energy per unit electrode area E_I (J/m^2).
     pub energy: f64,
@@ -467,14 +497,15 @@ impl Default for CycleOptions {
 }
 
 /// One loading/unloading cycle.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Cycle<H> {
     /// 1-based cycle number.
     pub cycle: usize,
     /// End of impact.
     pub end: EndOfImpact,
     /// The history after this cycle's loading.
-    #[serde(skip)]
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub history: H,
     /// Unloading and pull-out.
     pub unloading: Unloading,
@@ -492,7 +523,8 @@ impl<H> Cycle<H> {
 }
 
 /// The cycles and what was learned from them.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct CycleRun<H> {
     /// The first (virgin) loading curve, from d_e of cycle 1 to the reach.
     pub loading: Vec<PressurePoint>,
@@ -599,8 +631,9 @@ pub fn run_cycles<S: SurfaceLaw>(
 }
 
 /// The residual of eq 17 at `d`, G(d) = integral_d^inf p_L + p_L(d)^2 t_s/(2E) - E_I
-/// (J/m^2), computed independently of [`end_of_impact`] (fixed tight quadrature on
-/// quarter-sigma panels): a check of the energy balance for tests and tools.
+/// (J/m^2), computed independently of [`end_of_impact`] (one adaptive integral at 1e-13 of
+/// the integral of |p_L|, from `d` to the first touch): a check of the energy balance for
+/// tests and tools.
 pub fn eq17_residual<S: SurfaceLaw>(
     surface: &S,
     history: &S::History,
@@ -611,9 +644,10 @@ pub fn eq17_residual<S: SurfaceLaw>(
     let top = surface.reach(history, Path::Approach)?;
     let rule = AdaptiveRule::new(6)?;
     let quad = QuadTolerance {
-        rel: 1e-13,
+        rel: 0.0,
+        rel_of_abs: 1e-13,
         abs: 0.0,
-        max_width: 0.25 * surface.length_scales(history)?.roughness,
+        max_width: 0.0,
         max_panels: 100_000,
     };
     let mut breaks = vec![d];

@@ -1,12 +1,12 @@
 use crate::error::SwitchError;
 use contact_core::{positive, CoreError};
-use serde::Serialize;
 
 /// Vacuum permittivity of Table 2 (F/m).
 pub const EPSILON_0: f64 = 8.854e-12;
 
 /// Table 2's geometry, SI units, before validation: the argument of [`Switch::new`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct SwitchGeometry {
     /// Initial air gap d0 (m).
     pub d0: f64,

@@ -110,8 +110,8 @@ fn a_closure_in_the_tensile_well_is_not_an_end_of_impact() {
     // above d_e the pressure was tensile somewhere, so a film-closed balance was possible
     let mut tensile = false;
     let top = gw.reach(&hist, Path::Approach).unwrap();
-    for i in 0..400 {
-        let d = end.d_e + (top - end.d_e) * i as f64 / 400.0;
+    for i in 0..100 {
+        let d = end.d_e + (top - end.d_e) * i as f64 / 100.0;
         tensile |= gw.pressure(d, &hist, Path::Approach).unwrap() < 0.0;
     }
     assert!(tensile, "the case must have a tensile approach well");

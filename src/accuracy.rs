@@ -1,0 +1,96 @@
+//! The accuracy modes: targets on the reported quantities, and the numerical settings
+//! that meet them (measured over random scenes of the documented domains by
+//! `cargo xtask accuracy` and `tests/accuracy_modes.rs`; figures in docs/performance.md).
+
+use serde::{Deserialize, Serialize};
+
+/// A speed/accuracy trade, named by its targets (see [`Targets`]).
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum Accuracy {
+    /// d_e within 1e-9 sigma_s, pull-out within 1e-8 (relative).
+    #[default]
+    Accurate,
+    /// d_e within 1e-6 sigma_s, pull-out within 1e-6.
+    Balanced,
+    /// d_e within 1e-4 sigma_s, pull-out within 1e-4.
+    Fast,
+    /// Tighter than accurate (1e-11 sigma_s, 1e-10): the yardstick the other modes are
+    /// measured against.
+    Reference,
+}
+
+/// What a mode promises on the reported quantities, against a tighter computation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Targets {
+    /// The mode.
+    pub mode: Accuracy,
+    /// d_e to this fraction of sigma_s.
+    pub d_e_tolerance_sigma: f64,
+    /// The pull-out pressure to this fraction of itself ...
+    pub pull_out_tolerance: f64,
+    /// ... or to this fraction of the restoring pressure K_s d0, whichever is larger.
+    pub pull_out_floor_of_restoring: f64,
+}
+
+impl Accuracy {
+    /// The scene spelling.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Accuracy::Accurate => "accurate",
+            Accuracy::Balanced => "balanced",
+            Accuracy::Fast => "fast",
+            Accuracy::Reference => "reference",
+        }
+    }
+
+    /// The mode's targets.
+    pub fn targets(self) -> Targets {
+        let (d_e, pull) = match self {
+            Accuracy::Reference => (1e-11, 1e-10),
+            Accuracy::Accurate => (1e-9, 1e-8),
+            Accuracy::Balanced => (1e-6, 1e-6),
+            Accuracy::Fast => (1e-4, 1e-4),
+        };
+        Targets {
+            mode: self,
+            d_e_tolerance_sigma: d_e,
+            pull_out_tolerance: pull,
+            pull_out_floor_of_restoring: 1e-9,
+        }
+    }
+
+    /// Internal margin: the settings aim this much tighter than the targets, because the
+    /// targets bound the *measured* error over the documented domains.
+    const MARGIN: f64 = 0.1;
+
+    /// The height quadrature of the rough surface (`abs_floor`: a pressure error in Pa
+    /// that does not matter to the caller, 0 for none).
+    pub fn quadrature(self, abs_floor: f64) -> gw_surface::Quadrature {
+        let t = self.targets();
+        gw_surface::Quadrature {
+            // pressures to a tenth of the tighter of the two targets
+            rel_tol: (Self::MARGIN * t.pull_out_tolerance.min(t.d_e_tolerance_sigma)).max(1e-13),
+            abs_tol: Self::MARGIN * abs_floor,
+            nodes: 6,
+        }
+    }
+
+    /// The targets of the switch computations (`restoring`: K_s d0, Pa).
+    pub fn precision(self, restoring: f64) -> switch_1d::Precision {
+        let t = self.targets();
+        switch_1d::Precision {
+            d_e: Self::MARGIN * t.d_e_tolerance_sigma,
+            pull_out: Self::MARGIN * t.pull_out_tolerance,
+            pressure_floor: Self::MARGIN * t.pull_out_floor_of_restoring * restoring,
+        }
+    }
+}
+
+impl std::fmt::Display for Accuracy {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}

@@ -1,0 +1,75 @@
+//! The subcommands. Each is scene -> validated model -> run -> report -> render: the
+//! [`Command`] trait says where the scene comes from, what the command line overrides and
+//! what is computed; [`pipeline`] does the rest, the same way for every command.
+
+pub mod asperity;
+pub mod md;
+pub mod print;
+pub mod surface;
+pub mod switch;
+
+use crate::error::Error;
+use crate::render::{self, Format, OutputSet, Render};
+use crate::scene::{self, Loaded, Scene};
+use std::path::Path;
+
+/// A subcommand that works on a scene.
+pub trait Command {
+    /// Its scene kind.
+    type Scene: Scene;
+    /// Its report.
+    type Report: Render;
+    /// The scene file (None: the embedded paper scene).
+    fn scene_path(&self) -> Option<&Path>;
+    /// Command-line overrides, applied before validation.
+    fn apply(&self, scene: &mut Self::Scene) -> Result<(), Error> {
+        let _ = scene;
+        Ok(())
+    }
+    /// The computation.
+    fn run(&self, scene: &Loaded<Self::Scene>) -> Result<Self::Report, Error>;
+    /// Files to write besides standard output (an `--out` folder, a `--plot`).
+    fn outputs(&self, report: &Self::Report) -> Result<Option<OutputSet>, Error> {
+        let _ = report;
+        Ok(None)
+    }
+    /// The format of standard output.
+    fn format(&self) -> Format;
+}
+
+/// Runs a command: load, override, validate, run, warn, write files, render.
+pub fn pipeline<C: Command>(cmd: &C) -> Result<String, Error> {
+    let mut loaded = scene::load::<C::Scene>(cmd.scene_path())?;
+    cmd.apply(&mut loaded.scene)?;
+    loaded.scene.validate(&loaded.file)?;
+    let report = cmd.run(&loaded).map_err(|e| e.in_scene(&loaded.file))?;
+    for w in report.warnings() {
+        eprintln!("warning[{}]: {}", w.code, w.message);
+    }
+    let mut text = report.render(cmd.format());
+    if let Some(set) = cmd.outputs(&report)? {
+        let written = set.commit()?;
+        if cmd.format() == Format::Table {
+            let list: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+            text.push_str(&format!("\nwrote {}\n", list.join(", ")));
+        }
+    }
+    Ok(text)
+}
+
+/// Renders a report computed without a scene.
+pub fn show<R: Render>(report: &R, format: Format) -> String {
+    for w in report.warnings() {
+        eprintln!("warning[{}]: {}", w.code, w.message);
+    }
+    report.render(format)
+}
+
+/// An SVG plot for a `--plot` option, written atomically.
+pub fn write_plot(path: &Path, svg: Result<String, String>) -> Result<(), Error> {
+    let svg = svg.map_err(|message| Error::Plot {
+        path: path.display().to_string(),
+        message,
+    })?;
+    render::write_file(path, svg.as_bytes())
+}

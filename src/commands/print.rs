@@ -1,0 +1,35 @@
+//! `stiction scene --print KIND`: an embedded scene with every accepted key, alternatives
+//! commented out with their meaning, to start a scene of one's own from.
+
+use crate::scene::{self, fields::Kind};
+
+/// The annotated paper scene of `kind`.
+pub fn scene_text(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Asperity => scene::DEFAULT_ASPERITY,
+        Kind::Surface => scene::DEFAULT_SURFACE,
+        Kind::Switch => scene::DEFAULT_SWITCH,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::fields;
+
+    /// Every key a scene accepts appears in its printed form, set or commented out.
+    #[test]
+    fn printed_scenes_show_every_accepted_key() {
+        for kind in [Kind::Asperity, Kind::Surface, Kind::Switch] {
+            let text = scene_text(kind);
+            for f in fields::of(kind) {
+                let leaf = f.key.rsplit('.').next().unwrap_or(f.key);
+                let present = text.lines().any(|l| {
+                    let l = l.trim_start_matches('#').trim_start();
+                    l.starts_with(&format!("{leaf} =")) || l.starts_with(&format!("[{}]", f.key))
+                });
+                assert!(present, "{kind:?}: `{}` is not shown", f.key);
+            }
+        }
+    }
+}

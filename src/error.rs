@@ -1,0 +1,143 @@
+//! The one error type of the root package: every crate's error kept typed, and the exit
+//! status chosen by variant (2: bad input, 1: a numerical failure).
+
+use crate::scene::SceneError;
+use contact_core::{CoreError, LawError};
+
+/// Why a command failed.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A scene file or value.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// A command-line option outside its domain or in conflict with another.
+    #[error("invalid {option}: {message}")]
+    Usage {
+        /// The option as written (`--cycles`).
+        option: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// An output file or folder.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// Where.
+        path: String,
+        /// Why.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A plot.
+    #[error("cannot draw {path}: {message}")]
+    Plot {
+        /// Where.
+        path: String,
+        /// Why.
+        message: String,
+    },
+    /// `contact-core`.
+    #[error(transparent)]
+    Core(#[from] CoreError),
+    /// `maugis-kim`.
+    #[error(transparent)]
+    MaugisKim(#[from] maugis_kim::MkError),
+    /// `asperity-plastic`.
+    #[error(transparent)]
+    Plastic(#[from] asperity_plastic::PlasticError),
+    /// `gw-surface`.
+    #[error(transparent)]
+    Surface(#[from] gw_surface::GwError),
+    /// `switch-1d`.
+    #[error(transparent)]
+    Switch(#[from] switch_1d::SwitchError),
+    /// A law through the trait seam.
+    #[error(transparent)]
+    Law(#[from] LawError),
+    /// `design-sweep`.
+    #[error(transparent)]
+    Design(#[from] design_sweep::DesignError),
+    /// `contact-law`.
+    #[error(transparent)]
+    ContactLaw(#[from] contact_law::LawError),
+    /// An error while running a scene, with the scene's file.
+    #[error("{file}: {source}")]
+    InScene {
+        /// The scene file.
+        file: String,
+        /// What went wrong.
+        source: Box<Error>,
+    },
+}
+
+/// Whether a core error is a value outside its domain (bad input) rather than a solver
+/// that could not deliver.
+fn core_is_input(e: &CoreError) -> bool {
+    matches!(e, CoreError::Invalid { .. })
+}
+
+fn law_is_input(e: &LawError) -> bool {
+    match e {
+        LawError::Core(c) => core_is_input(c),
+        LawError::Law(_) => [
+            e.downcast_ref::<maugis_kim::MkError>()
+                .map(|m| matches!(m, maugis_kim::MkError::Core(c) if core_is_input(c))),
+            e.downcast_ref::<asperity_plastic::PlasticError>()
+                .map(|p| !matches!(p, asperity_plastic::PlasticError::Core(c) if !core_is_input(c))),
+        ]
+        .into_iter()
+        .flatten()
+        .any(|b| b),
+    }
+}
+
+impl Error {
+    /// Exit status: 2 for bad input (scene, option, output path, a parameter a law
+    /// refuses), 1 for a numerical failure.
+    pub fn exit_code(&self) -> i32 {
+        let input = match self {
+            Error::InScene { source, .. } => return source.exit_code(),
+            Error::Scene(_) | Error::Usage { .. } | Error::Write { .. } | Error::Plot { .. } => true,
+            Error::Core(e) => core_is_input(e),
+            Error::MaugisKim(maugis_kim::MkError::Core(e)) => core_is_input(e),
+            Error::MaugisKim(_) => false,
+            Error::Plastic(asperity_plastic::PlasticError::Core(e)) => core_is_input(e),
+            Error::Plastic(_) => true,
+            Error::Surface(gw_surface::GwError::Core(e)) => core_is_input(e),
+            Error::Surface(gw_surface::GwError::Asperity { source, .. }) => law_is_input(source),
+            Error::Surface(gw_surface::GwError::LawNotFinite { .. }) => false,
+            Error::Switch(switch_1d::SwitchError::Core(e)) => core_is_input(e),
+            Error::Switch(switch_1d::SwitchError::Surface(e)) => law_is_input(e),
+            Error::Switch(_) => false,
+            Error::Law(e) => law_is_input(e),
+            Error::Design(e) => !matches!(e, design_sweep::DesignError::ScanFailed { .. }),
+            Error::ContactLaw(e) => !matches!(
+                e,
+                contact_law::LawError::Source { .. } | contact_law::LawError::BadSource(_)
+            ),
+        };
+        if input {
+            2
+        } else {
+            1
+        }
+    }
+
+    /// The same error, naming the scene it came from (scene errors name it already).
+    pub fn in_scene(self, file: &str) -> Self {
+        match self {
+            e @ (Error::Scene(_) | Error::InScene { .. }) => e,
+            e => Error::InScene {
+                file: file.to_string(),
+                source: Box::new(e),
+            },
+        }
+    }
+
+    /// A usage error.
+    pub fn usage(option: &str, message: impl Into<String>) -> Self {
+        Error::Usage {
+            option: option.into(),
+            message: message.into(),
+        }
+    }
+}

@@ -1,0 +1,257 @@
+//! How reports leave the program: formats, numbers with units that fit, warnings,
+//! standard output that survives a closed pipe, and output folders written atomically.
+
+use crate::error::Error;
+use serde::Serialize;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Output format of a subcommand.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// Pretty-printed JSON.
+    Json,
+    /// Comma-separated values, one header row.
+    Csv,
+    /// A table for people.
+    Table,
+}
+
+/// A physics guard raised by a run: the model is used where it leaves its ground.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Warning {
+    /// Stable identifier (`adhesion_yields_asperity`, `beyond_fit_range`,
+    /// `pressure_above_hardness`, ...).
+    pub code: &'static str,
+    /// What happened and what it means, with numbers.
+    pub message: String,
+}
+
+/// A report that can be rendered in every format.
+pub trait Render: Serialize {
+    /// The table for people.
+    fn table(&self) -> String;
+    /// The CSV form.
+    fn csv(&self) -> String;
+    /// The guards raised.
+    fn warnings(&self) -> &[Warning] {
+        &[]
+    }
+    /// The report in `format`.
+    fn render(&self, format: Format) -> String {
+        match format {
+            Format::Json => json(self),
+            Format::Csv => self.csv(),
+            Format::Table => self.table(),
+        }
+    }
+}
+
+/// Pretty JSON with a final newline. Reports hold no NaN or infinity (absent values are
+/// omitted), so serialisation cannot fail.
+pub fn json<T: Serialize + ?Sized>(v: &T) -> String {
+    serde_json::to_string_pretty(v).expect("reports hold finite numbers and string keys") + "\n"
+}
+
+/// Skips a float that is not finite (serde `skip_serializing_if`).
+pub fn not_finite(v: &f64) -> bool {
+    !v.is_finite()
+}
+
+/// `value` in `unit` with the SI prefix that keeps 1 to 3 digits before the point and
+/// `digits` significant digits (never "0.000000" for a non-zero value).
+pub fn si(value: f64, unit: &str, digits: usize) -> String {
+    if value == 0.0 {
+        return format!("0 {unit}");
+    }
+    if !value.is_finite() {
+        return format!("{value} {unit}");
+    }
+    const PREFIXES: [(f64, &str); 9] = [
+        (1e12, "T"),
+        (1e9, "G"),
+        (1e6, "M"),
+        (1e3, "k"),
+        (1.0, ""),
+        (1e-3, "m"),
+        (1e-6, "u"),
+        (1e-9, "n"),
+        (1e-12, "p"),
+    ];
+    let a = value.abs();
+    if !(1e-12..1e15).contains(&a) {
+        return format!("{value:.*e} {unit}", digits.saturating_sub(1));
+    }
+    let (scale, prefix) = PREFIXES
+        .iter()
+        .copied()
+        .find(|(s, _)| a >= *s)
+        .unwrap_or((1e-12, "p"));
+    let x = value / scale;
+    if x.abs() >= 1e3 || x.abs() < 1e-3 {
+        return format!("{value:.*e} {unit}", digits.saturating_sub(1));
+    }
+    let int_digits = (x.abs().log10().floor() as i64 + 1).max(1) as usize;
+    let decimals = digits.saturating_sub(int_digits);
+    format!("{x:.decimals$} {prefix}{unit}")
+}
+
+/// A pressure in Pa, kPa, MPa or GPa, 4 significant digits.
+pub fn pressure(p: f64) -> String {
+    si(p, "Pa", 4)
+}
+
+/// Writes `text` to standard output. A closed pipe (the reader went away, as `| head`
+/// does) ends the program quietly with status 0; any other failure is an error.
+pub fn emit(text: &str) -> Result<(), Error> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => std::process::exit(0),
+        Err(source) => Err(Error::Write {
+            path: "standard output".into(),
+            source,
+        }),
+    }
+}
+
+/// Files of one run, written together or not at all: into a fresh folder beside the
+/// target, which then replaces the target by renames. The target may only hold files a
+/// run of the same command writes (`known`), so that nothing of an earlier run is left
+/// beside new results and nothing else is ever removed.
+#[derive(Debug)]
+pub struct OutputSet {
+    dir: PathBuf,
+    known: &'static [&'static str],
+    files: Vec<(String, Vec<u8>)>,
+}
+
+impl OutputSet {
+    /// A set for folder `dir` of a command that can write the files named in `known`.
+    pub fn new(dir: &Path, known: &'static [&'static str]) -> Self {
+        Self {
+            dir: dir.to_path_buf(),
+            known,
+            files: Vec::new(),
+        }
+    }
+
+    /// Adds a file (its name must be one of `known`).
+    pub fn add(&mut self, name: &str, bytes: impl Into<Vec<u8>>) {
+        debug_assert!(self.known.contains(&name), "{name} not declared");
+        self.files.push((name.to_string(), bytes.into()));
+    }
+
+    /// The names of the files added.
+    pub fn names(&self) -> Vec<String> {
+        self.files.iter().map(|f| f.0.clone()).collect()
+    }
+
+    /// Writes the set: all files appear together in `dir`, replacing what an earlier run
+    /// of the command left there.
+    pub fn commit(self) -> Result<Vec<PathBuf>, Error> {
+        let write = |path: &Path, source| Error::Write {
+            path: path.display().to_string(),
+            source,
+        };
+        if self.dir.exists() {
+            let entries = std::fs::read_dir(&self.dir).map_err(|e| write(&self.dir, e))?;
+            for entry in entries {
+                let entry = entry.map_err(|e| write(&self.dir, e))?;
+                let name = entry.file_name().to_string_lossy().to_string();
+                let is_file = entry.file_type().map(|t| t.is_file()).unwrap_or(false);
+                if !is_file || !self.known.contains(&name.as_str()) {
+                    return Err(write(
+                        &self.dir,
+                        std::io::Error::other(format!(
+                            "the folder holds `{name}`, which this command does not write; give an empty or new folder (it is replaced as a whole)"
+                        )),
+                    ));
+                }
+            }
+        }
+        let parent = match self.dir.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        std::fs::create_dir_all(&parent).map_err(|e| write(&parent, e))?;
+        let base = self
+            .dir
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_else(|| "out".into());
+        let tag = format!("{}-{}", std::process::id(), nanos());
+        let staging = parent.join(format!(".{base}.new-{tag}"));
+        let retired = parent.join(format!(".{base}.old-{tag}"));
+        let result = (|| {
+            std::fs::create_dir(&staging).map_err(|e| write(&staging, e))?;
+            for (name, bytes) in &self.files {
+                let p = staging.join(name);
+                std::fs::write(&p, bytes).map_err(|e| write(&p, e))?;
+            }
+            if self.dir.exists() {
+                std::fs::rename(&self.dir, &retired).map_err(|e| write(&self.dir, e))?;
+            }
+            if let Err(e) = std::fs::rename(&staging, &self.dir) {
+                // put the earlier results back rather than leave nothing
+                let _ = std::fs::rename(&retired, &self.dir);
+                return Err(write(&self.dir, e));
+            }
+            let _ = std::fs::remove_dir_all(&retired);
+            Ok(())
+        })();
+        if result.is_err() {
+            let _ = std::fs::remove_dir_all(&staging);
+        }
+        result?;
+        Ok(self.files.iter().map(|f| self.dir.join(&f.0)).collect())
+    }
+}
+
+/// Writes one file atomically: into a temporary file beside it, then renamed over it.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    let write = |source| Error::Write {
+        path: path.display().to_string(),
+        source,
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .ok_or_else(|| write(std::io::Error::other("not a file name")))?;
+    let tmp = path.with_file_name(format!(".{name}.new-{}-{}", std::process::id(), nanos()));
+    std::fs::write(&tmp, bytes).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        write(e)
+    })?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        write(e)
+    })
+}
+
+fn nanos() -> u128 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_nanos())
+        .unwrap_or(0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_take_the_prefix_that_fits_and_never_print_zero_for_a_value() {
+        assert_eq!(pressure(16_880.37), "16.88 kPa");
+        assert_eq!(pressure(2.446e6), "2.446 MPa");
+        assert_eq!(pressure(6.0e-5), "60.00 uPa");
+        assert_eq!(pressure(0.0), "0 Pa");
+        assert_eq!(si(-1.81e6, "Pa", 3), "-1.81 MPa");
+        assert_eq!(si(7.78e-9, "m", 3), "7.78 nm");
+        assert_eq!(si(1e-20, "Pa", 3), "1.00e-20 Pa");
+        assert_eq!(si(1.2e-15, "m", 2), "1.2e-15 m");
+        for v in [1e-14, 3e-7, 0.4, 12.0, 7e5, 4e11, 2e16] {
+            assert!(!pressure(v).starts_with("0.000"), "{v}: {}", pressure(v));
+        }
+    }
+}

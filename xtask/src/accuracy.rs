@@ -1,0 +1,153 @@
+//! `cargo xtask accuracy [--scenes N] [--seed S]`: each accuracy mode's error against the
+//! reference mode and its speed-up over the accurate mode, over random switch scenes of
+//! the documented domains (half plausible MEMS, half the wide ranges); the table replaces
+//! the marked section of docs/performance.md.
+
+use std::time::Instant;
+use stiction::accuracy::Accuracy;
+use stiction::commands::switch::{self, SwitchReport};
+use stiction::scene::{Loaded, Scene, SwitchScene};
+use stiction::scenegen::{self, Domain, Rng};
+
+const BEGIN: &str = "<!-- xtask accuracy: begin -->";
+const END: &str = "<!-- xtask accuracy: end -->";
+
+fn run(s: &SwitchScene, mode: Accuracy) -> (Result<SwitchReport, String>, f64) {
+    let mut s = s.clone();
+    s.accuracy = mode;
+    let t = Instant::now();
+    let r = switch::run(&Loaded { file: "generated".into(), scene: s, is_paper: false }, false)
+        .map_err(|e| e.to_string());
+    (r, t.elapsed().as_secs_f64())
+}
+
+fn errors(a: &SwitchReport, b: &SwitchReport, sigma: f64) -> (f64, f64) {
+    let floor = 1e-9 * a.restoring_pressure / a.contact_area_fraction;
+    a.cycles.iter().zip(&b.cycles).fold((0.0f64, 0.0f64), |(de, po), (x, y)| {
+        (
+            de.max((x.d_e - y.d_e).abs() / sigma),
+            po.max((x.pull_out_pressure - y.pull_out_pressure).abs() / x.pull_out_pressure.abs().max(floor)),
+        )
+    })
+}
+
+fn quantile(v: &mut [f64], q: f64) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    v[((v.len() - 1) as f64 * q).round() as usize]
+}
+
+#[derive(Default)]
+struct Stats {
+    de: Vec<f64>,
+    po: Vec<f64>,
+    time: Vec<f64>,
+    failed: usize,
+    over: usize,
+}
+
+pub fn main(args: &[&str]) -> Result<(), String> {
+    let mut n = 100usize;
+    let mut seed = 20261123u64;
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        match *a {
+            "--scenes" => n = it.next().and_then(|v| v.parse().ok()).ok_or("--scenes needs a count")?,
+            "--seed" => seed = it.next().and_then(|v| v.parse().ok()).ok_or("--seed needs a number")?,
+            other => return Err(format!("unknown option {other}")),
+        }
+    }
+    let modes = [Accuracy::Accurate, Accuracy::Balanced, Accuracy::Fast];
+    let mut table = String::new();
+    let mut notes = Vec::new();
+    for domain in [Domain::Mems, Domain::Wide] {
+        let mut rng = Rng::new(seed ^ if domain == Domain::Wide { 0xABCD } else { 0 });
+        let mut stats: Vec<Stats> = modes.iter().map(|_| Stats::default()).collect();
+        let (mut scenes, mut unanswered) = (0, 0);
+        while scenes < n / 2 {
+            let mut s = scenegen::switch_scene(&mut rng, domain);
+            if s.validate("generated").is_err() {
+                continue;
+            }
+            scenes += 1;
+            let (reference, _) = run(&s, Accuracy::Reference);
+            let Ok(reference) = reference else {
+                unanswered += 1;
+                continue;
+            };
+            let sigma = s.surface.sigma_s;
+            for (k, &mode) in modes.iter().enumerate() {
+                let (r, t) = run(&s, mode);
+                match r {
+                    Ok(r) => {
+                        let (de, po) = errors(&reference, &r, sigma);
+                        let tg = mode.targets();
+                        if de > tg.d_e_tolerance_sigma || po > tg.pull_out_tolerance {
+                            stats[k].over += 1;
+                            notes.push(format!("{domain:?} {mode}: d_e {de:.1e} sigma_s, pull-out {po:.1e} ({:?}, {:?}, eq 1 {:?})", s.contact.adhesion_law, s.contact.plasticity_law, s.contact.yield_modulus));
+                        }
+                        stats[k].de.push(de);
+                        stats[k].po.push(po);
+                        stats[k].time.push(t);
+                    }
+                    Err(e) => {
+                        stats[k].failed += 1;
+                        notes.push(format!("{domain:?} {mode}: failed where the reference did not: {e}"));
+                    }
+                }
+            }
+            eprint!("\r{domain:?}: {scenes}/{} scenes", n / 2);
+        }
+        eprintln!();
+        let accurate_time: f64 = stats[0].time.iter().sum();
+        table += &format!(
+            "\n**{}** ({scenes} scenes, {} without an answer in the reference mode, e.g. adhesion stronger than any compression):\n\n",
+            match domain {
+                Domain::Mems => "Plausible MEMS contacts",
+                Domain::Wide => "The wide ranges a scene accepts",
+            },
+            unanswered
+        );
+        table += "| mode | target d_e / pull-out | d_e error: median / 99 % / max (sigma_s) | pull-out error: median / 99 % / max | over target | failed | time (s) | speed-up over accurate |\n|---|---|---|---|---|---|---|---|\n";
+        for (k, &mode) in modes.iter().enumerate() {
+            let st = &mut stats[k];
+            let t = mode.targets();
+            let total: f64 = st.time.iter().sum();
+            table += &format!(
+                "| {mode} | {:.0e} / {:.0e} | {:.1e} / {:.1e} / {:.1e} | {:.1e} / {:.1e} / {:.1e} | {} | {} | {:.1} | {:.1}x |\n",
+                t.d_e_tolerance_sigma,
+                t.pull_out_tolerance,
+                quantile(&mut st.de.clone(), 0.5),
+                quantile(&mut st.de.clone(), 0.99),
+                quantile(&mut st.de.clone(), 1.0),
+                quantile(&mut st.po.clone(), 0.5),
+                quantile(&mut st.po.clone(), 0.99),
+                quantile(&mut st.po.clone(), 1.0),
+                st.over,
+                st.failed,
+                total,
+                accurate_time / total.max(1e-12),
+            );
+        }
+    }
+    let body = format!(
+        "{BEGIN}\nMeasured by `cargo xtask accuracy --scenes {n} --seed {seed}` (release build, this machine, 4 cycles, pull-out only; errors against the reference mode; pull-out errors relative, with the floor 1e-9 K_s d0):\n{table}\n{}\n{END}",
+        if notes.is_empty() {
+            "Every mode met its targets on every scene.".to_string()
+        } else {
+            format!("Scenes over target or failing:\n\n{}", notes.iter().map(|n| format!("- {n}")).collect::<Vec<_>>().join("\n"))
+        }
+    );
+    println!("{body}");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/performance.md");
+    let doc = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
+    let new = match (doc.find(BEGIN), doc.find(END)) {
+        (Some(a), Some(b)) if b > a => format!("{}{body}{}", &doc[..a], &doc[b + END.len()..]),
+        _ => format!("{doc}\n{body}\n"),
+    };
+    std::fs::write(path, new).map_err(|e| e.to_string())?;
+    println!("\nwrote docs/performance.md");
+    Ok(())
+}
