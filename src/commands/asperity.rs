@@ -16,16 +16,20 @@ use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-/// The command line of `stiction asperity`.
-#[derive(Debug, Clone)]
+/// One elasto-plastic adhesive asperity loaded and unloaded (paper Fig 2).
+#[derive(Debug, Clone, clap::Args)]
 pub struct AsperityCommand {
-    /// Scene file (the paper's Fig 2 scene if absent).
+    /// Scene file (TOML); the paper's Fig 2 scene if absent.
+    #[arg(long)]
     pub scene: Option<PathBuf>,
-    /// Replaces the scene's delta_max list when not empty.
+    /// Maximum interference (m); repeat for several cases. Replaces the scene's list.
+    #[arg(long = "delta-max", allow_hyphen_values = true)]
     pub delta_max: Vec<f64>,
-    /// Standard output format.
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
     pub format: Format,
-    /// SVG plot of the curves.
+    /// Write an SVG plot of the curves.
+    #[arg(long)]
     pub plot: Option<PathBuf>,
 }
 

@@ -1,11 +1,64 @@
 //! `stiction md`: the nondimensional Maugis-Kim curve (paper eqs 7-11, Kim extension).
 
 use crate::error::Error;
-use crate::render::Render;
+use crate::render::{Format, Render};
 use contact_core::Path;
 use maugis_kim::{MdCurve, MdPoint};
 use serde::Serialize;
 use std::fmt::Write as _;
+
+/// A path option of `md --delta`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum PathArg {
+    /// Coming from far away.
+    Approach,
+    /// Retracting after `--from`.
+    Retract,
+}
+
+/// Maugis-Dugdale curve with the Kim extension, nondimensional (paper eq 7).
+#[derive(Debug, Clone, clap::Args)]
+pub struct MdCommand {
+    /// Transition parameter lambda.
+    #[arg(long, allow_hyphen_values = true)]
+    pub lambda: f64,
+    /// Points on the curve.
+    #[arg(long, default_value_t = 200, allow_hyphen_values = true)]
+    pub points: usize,
+    /// Largest interference Delta of the curve.
+    #[arg(long, default_value_t = 5.0, allow_hyphen_values = true)]
+    pub delta_end: f64,
+    /// Print the force at this one interference Delta instead of the curve.
+    #[arg(long, allow_hyphen_values = true)]
+    pub delta: Option<f64>,
+    /// Path for --delta.
+    #[arg(long, value_enum, default_value_t = PathArg::Approach, requires = "delta")]
+    pub path: PathArg,
+    /// Largest interference of the excursion for --path retract.
+    #[arg(long, allow_hyphen_values = true)]
+    pub from: Option<f64>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Json)]
+    pub format: Format,
+}
+
+impl MdCommand {
+    /// The curve, or one point with --delta.
+    pub fn execute(&self) -> Result<String, Error> {
+        let Some(delta) = self.delta else {
+            return Ok(super::show(&curve(self.lambda, self.points, self.delta_end)?, self.format));
+        };
+        let p = match (self.path, self.from) {
+            (PathArg::Approach, None) => Path::Approach,
+            (PathArg::Approach, Some(_)) => {
+                return Err(Error::usage("--from", "applies to --path retract only"))
+            }
+            (PathArg::Retract, Some(f)) => Path::Retract { from: f },
+            (PathArg::Retract, None) => return Err(Error::usage("--path retract", "needs --from")),
+        };
+        Ok(super::show(&point(self.lambda, delta, p)?, self.format))
+    }
+}
 
 /// The curve and its landmarks.
 #[derive(Debug, Clone, Serialize)]

@@ -3,6 +3,37 @@
 
 use crate::scene::{self, fields::Kind};
 
+/// The scene kinds of `scene --print`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SceneKind {
+    /// `stiction asperity`.
+    Asperity,
+    /// `stiction surface`.
+    Surface,
+    /// `stiction switch`, `design`, `law`.
+    Switch,
+}
+
+/// Print an embedded scene as TOML, with every accepted key, to start a scene from.
+#[derive(Debug, Clone, clap::Args)]
+pub struct SceneCommand {
+    /// Which scene.
+    #[arg(long, value_enum)]
+    pub print: SceneKind,
+}
+
+impl SceneCommand {
+    /// The scene's text.
+    pub fn execute(&self) -> String {
+        scene_text(match self.print {
+            SceneKind::Asperity => Kind::Asperity,
+            SceneKind::Surface => Kind::Surface,
+            SceneKind::Switch => Kind::Switch,
+        })
+        .to_string()
+    }
+}
+
 /// The annotated paper scene of `kind`.
 pub fn scene_text(kind: Kind) -> &'static str {
     match kind {

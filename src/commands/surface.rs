@@ -17,18 +17,23 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use switch_1d::PressurePoint;
 
-/// The command line of `stiction surface`.
-#[derive(Debug, Clone)]
+/// The rough surface: virgin loading and, with --unload-from, unloading and reloading.
+#[derive(Debug, Clone, clap::Args)]
 pub struct SurfaceCommand {
-    /// Scene file (the paper's surface if absent).
+    /// Scene file (TOML); the paper's surface if absent.
+    #[arg(long)]
     pub scene: Option<PathBuf>,
-    /// Load to this separation and unload from it (replaces the scene's).
+    /// Load to this separation d (m) and unload from it (replaces the scene's).
+    #[arg(long, allow_hyphen_values = true)]
     pub unload_from: Option<f64>,
     /// Accuracy mode (replaces the scene's).
+    #[arg(long, value_enum)]
     pub accuracy: Option<Accuracy>,
-    /// Standard output format.
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
     pub format: Format,
-    /// SVG plot of the curves.
+    /// Write an SVG plot of the curves.
+    #[arg(long)]
     pub plot: Option<PathBuf>,
 }
 

@@ -16,21 +16,42 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use switch_1d::{CycleOptions, Impact, ImpactFilm, PressurePoint, Switch, SwitchGeometry};
 
-/// The command line of `stiction switch` (and the default command).
-#[derive(Debug, Clone)]
+/// The micro-switch cycle by cycle: d_e, pull-out pressure, accommodation, stiction.
+#[derive(Debug, Clone, clap::Args)]
 pub struct SwitchCommand {
-    /// Scene file (the paper's switch if absent).
+    /// Scene file (TOML); the paper's switch if absent.
+    #[arg(long)]
     pub scene: Option<PathBuf>,
-    /// Number of cycles (replaces the scene's).
+    /// Number of cycles (replaces the scene's), 1..1000.
+    #[arg(long, conflicts_with = "until_accommodated", allow_hyphen_values = true)]
     pub cycles: Option<usize>,
-    /// Run until accommodated (at most the scene's cycles; 1000 for the paper scene).
+    /// Run until accommodation is detected (at most the scene's cycles, or 1000).
+    #[arg(long)]
     pub until_accommodated: bool,
     /// Accuracy mode (replaces the scene's).
+    #[arg(long, value_enum)]
     pub accuracy: Option<Accuracy>,
-    /// Standard output format.
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
     pub format: Format,
-    /// Folder for switch.json, cycles.csv, curves.csv and switch.svg.
+    /// Write switch.json, cycles.csv, curves.csv and switch.svg to this folder (replaced as
+    /// a whole; it may hold only those files).
+    #[arg(long)]
     pub out: Option<PathBuf>,
+}
+
+impl SwitchCommand {
+    /// The main job: the paper's switch, written to out/.
+    pub fn main_job() -> Self {
+        Self {
+            scene: None,
+            cycles: None,
+            until_accommodated: false,
+            accuracy: None,
+            format: Format::Table,
+            out: Some(PathBuf::from("out")),
+        }
+    }
 }
 
 /// Which of K_s, U and E_I the scene gave and which were derived.
