@@ -368,7 +368,14 @@ pub fn refine_minima<E: From<CoreError>>(
     cand.sort_by(|&i, &j| ys[i].total_cmp(&ys[j]).then(i.cmp(&j)));
     let mut best: Option<Minimum> = None;
     let mut evaluations = 0;
-    for &i in cand.iter().take(GRID_MIN_CANDIDATES) {
+    // where some sample is negative, a local minimum whose sample is not cannot be the
+    // lowest (the grid resolves every well by construction): it is not refined
+    let any_negative = ys.iter().any(|&y| y < 0.0);
+    for &i in cand
+        .iter()
+        .filter(|&&i| !any_negative || ys[i] < 0.0)
+        .take(GRID_MIN_CANDIDATES)
+    {
         let (a, b) = (grid[i.saturating_sub(1)], grid[(i + 1).min(n - 1)]);
         let m = if a == b {
             evaluations += 1;

@@ -13,7 +13,7 @@ use statrs::distribution::{Continuous, ContinuousCDF, Normal};
 pub const TAIL_SIGMAS: f64 = 9.0;
 
 /// Heights (in sigma_s) of the widest panel the height quadrature starts from.
-const START_PANEL_SIGMAS: f64 = 2.0;
+const START_PANEL_SIGMAS: f64 = 20.0;
 
 /// The roughness of the equivalent surface against a smooth flat (eq 14): the argument of
 /// [`GreenwoodWilliamson::new`].
@@ -463,26 +463,39 @@ impl<M: AsperityModel> SurfaceLaw for GreenwoodWilliamson<M> {
         history.loaded(d)
     }
 
-    /// The highest asperity (at TAIL_SIGMAS sigma_s) decides: virgin, or as deformed as
-    /// the history makes it; on approach its jump-in, on retraction also its jump-out.
+    /// On approach the first asperity to touch decides: the highest one, deformed as the
+    /// history makes it, or (for a surface loaded by a flat) the highest one the flat never
+    /// reached, which is still virgin. On retraction also their jump-outs after the
+    /// excursion.
     fn reach(&self, history: &GwHistory, path: Path) -> Result<f64, LawError> {
         let top = TAIL_SIGMAS * self.sigma_s();
         let virgin = self.jumps_of(AsperityHistory::VIRGIN)?;
         let deformed = self.jumps_of(AsperityHistory {
             delta_max: history.delta_max(top),
         })?;
-        let mut lowest = virgin.jump_in.min(deformed.jump_in);
+        let highest_virgin = match history.deepest() {
+            // every asperity above `deepest` has been pressed; h - jump_in grows with h on
+            // both sides (delta_res grows more slowly than delta_max)
+            Some(deep) => deep.min(top),
+            None => top,
+        };
+        let mut reach = (top - deformed.jump_in).max(highest_virgin - virgin.jump_in);
+        if history.deepest().is_none() {
+            reach = reach.max(top - virgin.jump_in);
+        }
         if let Path::Retract { from } = path {
             let excursion = self.jumps_of(AsperityHistory {
                 delta_max: history.delta_max(top).max(top - from),
             })?;
-            lowest = lowest
-                .min(virgin.jump_out)
+            let lowest = virgin
+                .jump_out
                 .min(deformed.jump_out)
                 .min(excursion.jump_out)
-                .min(excursion.jump_in);
+                .min(excursion.jump_in)
+                .min(virgin.jump_in);
+            reach = reach.max(top - lowest);
         }
-        Ok(top - lowest)
+        Ok(reach)
     }
 
     /// finest: the smallest non-zero jump distance of a virgin asperity and of the most

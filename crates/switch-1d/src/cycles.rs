@@ -72,7 +72,9 @@ pub struct EndOfImpact {
 }
 
 /// Nodes per half panel of the d-integral of eq 17.
-const ENERGY_NODES: usize = 6;
+const ENERGY_NODES: usize = 4;
+/// Share of the d_e target given to the energy integral (relative to the work of |p_L|).
+const ENERGY_SHARE: f64 = 0.5;
 /// The search for d_e gives up this many roughness scales below the first touch.
 const DEPTH_LIMIT: f64 = 1e4;
 
@@ -134,14 +136,19 @@ pub fn end_of_impact<S: SurfaceLaw>(
     positive("film_youngs_modulus", film.youngs_modulus)?;
     positive("precision.d_e", precision.d_e)?;
     let scales = surface.length_scales(history)?;
-    let first = solve_eq17(surface, history, impact_energy, film, precision, scales, 1.0)?;
     let target = precision.d_e * scales.roughness;
-    if first.error <= target {
-        return Ok(first);
+    let mut tighten = 1.0;
+    let mut end = solve_eq17(surface, history, impact_energy, film, precision, scales, tighten)?;
+    // the energy tolerance assumed a typical depth below the first touch: tighten by what
+    // the error estimate says, twice at most
+    for _ in 0..2 {
+        if end.error <= target {
+            break;
+        }
+        tighten *= (0.3 * target / end.error).clamp(1e-6, 0.5);
+        end = solve_eq17(surface, history, impact_energy, film, precision, scales, tighten)?;
     }
-    // the energy tolerance assumed a typical depth below the first touch: tighten once
-    let tighter = (target / first.error).clamp(1e-4, 0.5);
-    solve_eq17(surface, history, impact_energy, film, precision, scales, tighter)
+    Ok(end)
 }
 
 fn solve_eq17<S: SurfaceLaw>(
@@ -161,8 +168,8 @@ fn solve_eq17<S: SurfaceLaw>(
     // with top - d_e about 20 sigma; checked a posteriori by the error estimate
     let quad = QuadTolerance {
         rel: 0.0,
-        rel_of_abs: 0.05 * precision.d_e * tighten,
-        abs: 0.05 * precision.d_e * tighten * energy,
+        rel_of_abs: ENERGY_SHARE * precision.d_e * tighten,
+        abs: ENERGY_SHARE * precision.d_e * tighten * energy,
         max_width: 0.0,
         max_panels: 4000,
     };
