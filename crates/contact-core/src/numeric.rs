@@ -14,8 +14,6 @@
 //!   caller chooses from the law's length scales, then its best local minima refined.
 //! * [`integrate`]: globally adaptive, error-controlled quadrature on panels between
 //!   break points, by nested Gauss-Legendre rules ([`AdaptiveRule`]).
-//! * [`integrate_tanh_sinh`]: adaptive tanh-sinh (`quadrature` crate), used as an
-//!   independent reference in tests.
 //! * [`GaussLegendre`]: the n-point rule, nodes by Newton's iteration.
 //! * [`linspace`], [`geomspace`]: the one sampling helper.
 
@@ -931,82 +929,6 @@ impl Ord for Key {
     }
 }
 
-/// Adaptive tanh-sinh quadrature of f on [a, b] to an absolute error `abs_tol` (the
-/// `quadrature` crate on each panel, bisected up to `max_depth` times while its estimate
-/// misses its share). An independent rule for checking [`integrate`] in tests.
-pub fn integrate_tanh_sinh<E: From<CoreError>>(
-    what: &'static str,
-    mut f: impl FnMut(f64) -> Result<f64, E>,
-    a: f64,
-    b: f64,
-    abs_tol: f64,
-    max_depth: u32,
-) -> Result<Integral, E> {
-    if a == b {
-        return Ok(Integral::default());
-    }
-    // the quadrature crate takes an infallible Fn: evaluate through a cell and report the
-    // first error (or non-finite value) after the panel.
-    let mut first: Option<Result<(), E>> = None;
-    let out = tanh_sinh_rec(
-        what,
-        &mut |x: f64| match f(x) {
-            Ok(y) if y.is_finite() => y,
-            Ok(_) => {
-                first.get_or_insert(Err(CoreError::NotFinite { what, x }.into()));
-                0.0
-            }
-            Err(e) => {
-                first.get_or_insert(Err(e));
-                0.0
-            }
-        },
-        a,
-        b,
-        abs_tol,
-        max_depth,
-    );
-    if let Some(Err(e)) = first {
-        return Err(e);
-    }
-    out.map_err(E::from)
-}
-
-fn tanh_sinh_rec(
-    what: &'static str,
-    f: &mut dyn FnMut(f64) -> f64,
-    a: f64,
-    b: f64,
-    abs_tol: f64,
-    depth: u32,
-) -> Result<Integral, CoreError> {
-    let cell = std::cell::RefCell::new(f);
-    let o = quadrature::integrate(|x| (cell.borrow_mut())(x), a, b, abs_tol);
-    let f = cell.into_inner();
-    if o.error_estimate <= abs_tol {
-        return Ok(Integral {
-            value: o.integral,
-            error: o.error_estimate,
-            evaluations: o.num_function_evaluations as usize,
-        });
-    }
-    if depth == 0 {
-        return Err(CoreError::Quadrature {
-            what,
-            achieved: o.error_estimate,
-            tolerance: abs_tol,
-        });
-    }
-    let m = 0.5 * (a + b);
-    let l = tanh_sinh_rec(what, f, a, m, 0.5 * abs_tol, depth - 1)?;
-    let r = tanh_sinh_rec(what, f, m, b, 0.5 * abs_tol, depth - 1)?;
-    Ok(Integral {
-        value: l.value + r.value,
-        error: l.error + r.error,
-        evaluations: o.num_function_evaluations as usize + l.evaluations + r.evaluations,
-    })
-}
-
 /// n-point Gauss-Legendre rule on [-1, 1], nodes from Newton's iteration on P_n.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GaussLegendre {
@@ -1270,12 +1192,6 @@ mod tests {
         let e = integrate("nan", |x: f64| R::Ok(if x > 0.5 { f64::NAN } else { x }), &[0.0, 1.0], false, &rule, tol(1e-6))
             .unwrap_err();
         assert!(matches!(e, CoreError::NotFinite { what: "nan", .. }));
-    }
-
-    #[test]
-    fn tanh_sinh_handles_endpoint_singularity() {
-        let v = integrate_tanh_sinh("sqrt", |x: f64| R::Ok(x.sqrt()), 0.0, 1.0, 1e-14, 8).unwrap();
-        assert!((v.value - 2.0 / 3.0).abs() < 1e-13);
     }
 
     /// erf by its Taylor series (|x| < 3), an independent reference for the test above.
