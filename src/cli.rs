@@ -3,8 +3,8 @@
 //! struct (in `commands/`): a new subcommand is one module and one variant here.
 
 use crate::commands::{
-    self, asperity::AsperityCommand, md::MdCommand, print::SceneCommand,
-    surface::SurfaceCommand, switch::SwitchCommand,
+    self, asperity::AsperityCommand, calibrate::CalibrateCommand, md::MdCommand,
+    print::SceneCommand, surface::SurfaceCommand, switch::SwitchCommand,
 };
 use crate::error::Error;
 use crate::render;
@@ -38,6 +38,8 @@ pub enum Command {
     Surface(SurfaceCommand),
     /// The micro-switch cycle by cycle: d_e, pull-out pressure, accommodation, stiction.
     Switch(SwitchCommand),
+    /// Fit the effective-radius constants of eq 13 to finite-element curves of one asperity.
+    Calibrate(CalibrateCommand),
     /// Print an embedded scene as TOML, with every accepted key, to start a scene from.
     Scene(SceneCommand),
 }
@@ -69,6 +71,7 @@ pub fn execute(command: Option<Command>) -> Result<String, Error> {
         Command::Asperity(c) => commands::pipeline(&c),
         Command::Surface(c) => commands::pipeline(&c),
         Command::Switch(c) => commands::pipeline(&c),
+        Command::Calibrate(c) => c.execute(),
         Command::Scene(c) => Ok(c.execute()),
     }
 }

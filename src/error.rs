@@ -59,6 +59,9 @@ pub enum Error {
     /// `contact-law`.
     #[error(transparent)]
     ContactLaw(#[from] contact_law::LawError),
+    /// `calibrate`: finite-element data (naming line and column), options, or the fit.
+    #[error(transparent)]
+    Calibrate(#[from] calibrate::CalibError),
     /// An error while running a scene, with the scene's file.
     #[error("{file}: {source}")]
     InScene {
@@ -90,6 +93,22 @@ fn law_is_input(e: &LawError) -> bool {
     }
 }
 
+/// Whether a calibration error is bad input (data, options, starting constants, a
+/// parameter the model refuses) rather than a fit that failed numerically.
+fn calib_is_input(e: &calibrate::CalibError) -> bool {
+    use calibrate::CalibError as C;
+    match e {
+        C::Data { .. }
+        | C::Io { .. }
+        | C::TooFewPoints { .. }
+        | C::Selection { .. }
+        | C::Start(_)
+        | C::Option { .. } => true,
+        C::Model { source, .. } | C::Overlay { source, .. } => law_is_input(source),
+        C::Svd { .. } => false,
+    }
+}
+
 impl Error {
     /// Exit status: 2 for bad input (scene, option, output path, a parameter a law
     /// refuses), 1 for a numerical failure.
@@ -109,6 +128,7 @@ impl Error {
             Error::Switch(switch_1d::SwitchError::Surface(e)) => law_is_input(e),
             Error::Switch(_) => false,
             Error::Law(e) => law_is_input(e),
+            Error::Calibrate(e) => calib_is_input(e),
             Error::Design(e) => !matches!(e, design_sweep::DesignError::ScanFailed { .. }),
             Error::ContactLaw(e) => !matches!(
                 e,

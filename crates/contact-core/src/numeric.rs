@@ -228,8 +228,8 @@ pub fn local_min<E: From<CoreError>>(
     let mut fx = finite::<E>(what, x, f(x)?)?;
     let (mut fw, mut fv) = (fx, fx);
     let (mut d, mut e) = (0.0f64, 0.0f64);
-    let mut evaluations = 1;
-    for _ in 0..tol.max_iter {
+    // one evaluation before the loop and one per completed iteration
+    for evaluations in (1..).take(tol.max_iter) {
         let m = 0.5 * (a + b);
         let t = 2.0 * f64::EPSILON * x.abs() + 0.5 * tol.width(x) + f64::MIN_POSITIVE;
         let t2 = 2.0 * t;
@@ -268,7 +268,6 @@ pub fn local_min<E: From<CoreError>>(
         }
         let u = x + if d.abs() >= t { d } else { t.copysign(d) };
         let fu = finite::<E>(what, u, f(u)?)?;
-        evaluations += 1;
         if fu <= fx {
             if u < x {
                 b = x;
@@ -789,7 +788,8 @@ pub fn integrate_panels<E: From<CoreError>>(
         } else {
             (breaks[k], breaks[k + 1])
         };
-        if !(hi > lo) {
+        // an empty or NaN interval has nothing to integrate
+        if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
             continue;
         }
         let span = breaks[k + 1] - breaks[k];
