@@ -42,6 +42,8 @@ pub enum Command {
     Calibrate(CalibrateCommand),
     /// Print an embedded scene as TOML, with every accepted key, to start a scene from.
     Scene(SceneCommand),
+    /// Stiction-free design: the critical value of a scene field, maps of the pull-out ratio, merge of map shards.
+    Design(commands::design::DesignCommand),
 }
 
 /// Runs the CLI on `args` and returns the exit status.
@@ -73,5 +75,6 @@ pub fn execute(command: Option<Command>) -> Result<String, Error> {
         Command::Switch(c) => commands::pipeline(&c),
         Command::Calibrate(c) => c.execute(),
         Command::Scene(c) => Ok(c.execute()),
+        Command::Design(c) => c.execute(),
     }
 }

@@ -4,6 +4,7 @@
 
 pub mod asperity;
 pub mod calibrate;
+pub mod design;
 pub mod md;
 pub mod print;
 pub mod surface;
