@@ -32,13 +32,13 @@ pub fn zero_load_interference(elastic: &Asperity) -> Result<f64, Error> {
             return Ok(elastic.radius());
         }
     }
-    Ok(brent(
+    brent(
         "zero-load interference",
         |d| Ok::<_, Error>(elastic.force(d, hist, Path::Retract { from: hi })?),
         0.0,
         hi,
         Tolerance::relative(1e-10),
-    )?)
+    )
 }
 
 /// `adhesion_yields_asperity`: adhesion alone presses a virgin asperity beyond delta_CP

@@ -205,7 +205,7 @@ fn elastic_loading_pressure_is_continuous_and_monotone() {
     // compressive region: pressure decreases with d
     let mut prev = f64::INFINITY;
     for i in 0..40 {
-        let d = -1.0 * SIGMA + 0.1 * SIGMA * i as f64;
+        let d = -SIGMA + 0.1 * SIGMA * i as f64;
         let p = gw.pressure(d, &GwHistory::VIRGIN, Path::Approach).unwrap();
         if p > 0.0 {
             assert!(p < prev, "d {d}: {p} !< {prev}");
