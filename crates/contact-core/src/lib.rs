@@ -23,6 +23,7 @@
 mod error;
 mod material;
 pub mod numeric;
+pub mod par;
 mod traits;
 
 pub use error::{finite, positive, CoreError, LawError};

@@ -349,6 +349,31 @@ pub fn refine_minima<E: From<CoreError>>(
     ys: &[f64],
     tol: Tolerance,
 ) -> Result<Minimum, E> {
+    let brackets = minimum_brackets::<E>(grid, ys)?;
+    let found = brackets
+        .iter()
+        .map(|&bracket| refine_one(what, &mut f, bracket, tol))
+        .collect::<Result<Vec<_>, E>>()?;
+    Ok(lowest(found))
+}
+
+/// [`refine_minima`] with the candidates refined in parallel (see [`crate::par`]); the
+/// same result.
+pub fn refine_minima_par<E: From<CoreError> + Send>(
+    what: &'static str,
+    f: impl Fn(f64) -> Result<f64, E> + Sync,
+    grid: &[f64],
+    ys: &[f64],
+    tol: Tolerance,
+) -> Result<Minimum, E> {
+    let brackets = minimum_brackets::<E>(grid, ys)?;
+    let found = crate::par::map(&brackets, |&bracket| refine_one(what, &mut &f, bracket, tol))?;
+    Ok(lowest(found))
+}
+
+/// The brackets (neighbouring grid points) of the [`GRID_MIN_CANDIDATES`] best local
+/// minima of the samples, best first.
+fn minimum_brackets<E: From<CoreError>>(grid: &[f64], ys: &[f64]) -> Result<Vec<(f64, f64)>, E> {
     if grid.is_empty() || grid.len() != ys.len() {
         return Err(CoreError::Invalid {
             field: "grid",
@@ -363,41 +388,48 @@ pub fn refine_minima<E: From<CoreError>>(
         .filter(|&i| (i == 0 || ys[i] <= ys[i - 1]) && (i + 1 == n || ys[i] <= ys[i + 1]))
         .collect();
     cand.sort_by(|&i, &j| ys[i].total_cmp(&ys[j]).then(i.cmp(&j)));
-    let mut best: Option<Minimum> = None;
-    let mut evaluations = 0;
     // where some sample is negative, a local minimum whose sample is not cannot be the
     // lowest (the grid resolves every well by construction): it is not refined
     let any_negative = ys.iter().any(|&y| y < 0.0);
-    for &i in cand
+    Ok(cand
         .iter()
         .filter(|&&i| !any_negative || ys[i] < 0.0)
         .take(GRID_MIN_CANDIDATES)
-    {
-        let (a, b) = (grid[i.saturating_sub(1)], grid[(i + 1).min(n - 1)]);
-        let m = if a == b {
-            evaluations += 1;
-            Minimum {
-                x: a,
-                value: finite::<E>(what, a, f(a)?)?,
-                evaluations: 1,
-            }
-        } else {
-            let t = Tolerance {
-                rel: 0.0,
-                abs: tol.rel * (b - a).abs() + tol.abs,
-                max_iter: tol.max_iter,
-            };
-            let m = local_min(what, &mut f, a, b, t)?;
-            evaluations += m.evaluations;
-            m
-        };
-        if best.is_none_or(|b| m.value < b.value) {
-            best = Some(m);
-        }
+        .map(|&i| (grid[i.saturating_sub(1)], grid[(i + 1).min(n - 1)]))
+        .collect())
+}
+
+/// The minimum in one bracket, to `tol` relative to the bracket's width.
+fn refine_one<E: From<CoreError>>(
+    what: &'static str,
+    f: &mut impl FnMut(f64) -> Result<f64, E>,
+    (a, b): (f64, f64),
+    tol: Tolerance,
+) -> Result<Minimum, E> {
+    if a == b {
+        return Ok(Minimum {
+            x: a,
+            value: finite::<E>(what, a, f(a)?)?,
+            evaluations: 1,
+        });
     }
-    let mut best = best.expect("a grid has at least one local minimum");
+    let t = Tolerance {
+        rel: 0.0,
+        abs: tol.rel * (b - a).abs() + tol.abs,
+        max_iter: tol.max_iter,
+    };
+    local_min(what, f, a, b, t)
+}
+
+/// The lowest of the refined minima (the first of equals), counting every evaluation.
+fn lowest(found: Vec<Minimum>) -> Minimum {
+    let evaluations = found.iter().map(|m| m.evaluations).sum();
+    let mut best = found
+        .into_iter()
+        .reduce(|best, m| if m.value < best.value { m } else { best })
+        .expect("a grid has at least one local minimum");
     best.evaluations = evaluations;
-    Ok(best)
+    best
 }
 
 /// `n` evenly spaced points from `a` to `b` inclusive (`a` alone when n = 1).
@@ -554,7 +586,7 @@ pub const NOISE: f64 = 64.0 * f64::EPSILON;
 
 /// What [`integrate`] aims for: an error estimate at most
 /// `max(rel * |integral|, rel_of_abs * integral of |f|, abs)`, and never below the
-/// integrand's noise ([`NOISE`] times the integral of |f|).
+/// integrand's noise (`noise` times the integral of |f|).
 ///
 /// `rel` is relative to the result itself, which matters where positive and negative
 /// parts cancel (an adhesive pressure near its pull-out); `rel_of_abs` bounds the work
@@ -575,6 +607,11 @@ pub struct QuadTolerance {
     /// estimate: the integrand's noise is then the limit. Beyond that it is
     /// [`CoreError::Quadrature`].
     pub max_panels: usize,
+    /// Relative noise of the integrand's values: [`NOISE`] for a function computed to
+    /// rounding, more where its argument comes from a cancellation (a rough surface's
+    /// interference h - d over a range of heights much narrower than the heights). No
+    /// estimate is trusted below it, and a target below it is raised to it.
+    pub noise: f64,
 }
 
 /// How far above its target a quadrature stopped by its panel cap or by rounding may end
@@ -610,11 +647,11 @@ struct Panel {
 /// (a feature narrower than the panels that no node sees) is refined until it is seen.
 ///
 /// ```
-/// use contact_core::numeric::{integrate, AdaptiveRule, QuadTolerance};
+/// use contact_core::numeric::{integrate, AdaptiveRule, QuadTolerance, NOISE};
 /// use contact_core::CoreError;
 /// // |x - 0.3137| on [0, 1], with the kink nowhere declared
 /// let rule = AdaptiveRule::new(6)?;
-/// let tol = QuadTolerance { rel: 1e-12, rel_of_abs: 1e-12, abs: 0.0, max_width: 0.0, max_panels: 10_000 };
+/// let tol = QuadTolerance { rel: 1e-12, rel_of_abs: 1e-12, abs: 0.0, max_width: 0.0, max_panels: 10_000, noise: NOISE };
 /// let r = integrate("kink", |x: f64| Ok::<_, CoreError>((x - 0.3137).abs()), &[0.0, 1.0], false, &rule, tol)?;
 /// let exact = 0.5 * (0.3137f64.powi(2) + 0.6863f64.powi(2));
 /// assert!((r.value - exact).abs() < 1e-12);
@@ -714,76 +751,158 @@ pub fn integrate_panels<E: From<CoreError>>(
     rule: &AdaptiveRule,
     tol: QuadTolerance,
 ) -> Result<(Integral, Vec<PanelNodes>), E> {
-    let mut evaluations = 0usize;
-    let substituted = |k: usize| k == 0 && edge_substitution;
-    // the integrand in the panel variable t of interval k, Jacobian included
-    let mut g = |k: usize, t: f64| -> Result<f64, E> {
-        evaluations += 1;
-        let (x, jac) = if substituted(k) {
-            let l = breaks[1] - breaks[0];
-            (breaks[0] + l * t * t, 2.0 * l * t)
+    let map = Substitution { breaks, edge_substitution };
+    integrate_core(
+        what,
+        &mut |pts: &[(usize, f64)]| pts.iter().map(|&(k, t)| map.eval(what, &mut f, k, t)).collect(),
+        map,
+        rule,
+        tol,
+    )
+}
+
+/// [`integrate_panels`] with the integrand evaluated in parallel (rayon, with the
+/// `parallel` feature; sequentially without it): each batch of a panel's nodes, and of
+/// both children of a refined panel, is evaluated at once. Worth it where one evaluation
+/// costs tens of microseconds (a rough surface's pressure); the result is the same as
+/// [`integrate_panels`]' to the last bit, since the nodes and the order of the sums do not
+/// change.
+pub fn integrate_panels_par<E: From<CoreError> + Send>(
+    what: &'static str,
+    f: impl Fn(f64) -> Result<f64, E> + Sync,
+    breaks: &[f64],
+    edge_substitution: bool,
+    rule: &AdaptiveRule,
+    tol: QuadTolerance,
+) -> Result<(Integral, Vec<PanelNodes>), E> {
+    let map = Substitution { breaks, edge_substitution };
+    integrate_core(
+        what,
+        &mut |pts: &[(usize, f64)]| crate::par::map(pts, |&(k, t)| map.eval(what, &mut &f, k, t)),
+        map,
+        rule,
+        tol,
+    )
+}
+
+/// The integration variable of each interval of `breaks`: x itself, or on an
+/// edge-substituted first interval tau with x = x0 + L tau^2.
+#[derive(Clone, Copy)]
+struct Substitution<'a> {
+    breaks: &'a [f64],
+    edge_substitution: bool,
+}
+
+impl Substitution<'_> {
+    fn substituted(&self, k: usize) -> bool {
+        k == 0 && self.edge_substitution
+    }
+
+    /// The integrand at t of interval k, Jacobian included, checked finite.
+    fn eval<E: From<CoreError>>(
+        &self,
+        what: &'static str,
+        f: &mut impl FnMut(f64) -> Result<f64, E>,
+        k: usize,
+        t: f64,
+    ) -> Result<f64, E> {
+        let (x, jac) = if self.substituted(k) {
+            let l = self.breaks[1] - self.breaks[0];
+            (self.breaks[0] + l * t * t, 2.0 * l * t)
         } else {
             (t, 1.0)
         };
         Ok(finite::<E>(what, x, f(x)?)? * jac)
-    };
-    let mut ys = vec![0.0; rule.halves.len()];
-    let mut split = |g: &mut dyn FnMut(usize, f64) -> Result<f64, E>,
-                     k: usize,
-                     (a, b): (f64, f64),
-                     (fa, fb): (f64, f64),
-                     whole: f64|
-     -> Result<Panel, E> {
-        let (c, m) = (0.5 * (b - a), 0.5 * (a + b));
-        let n = rule.gl.len();
-        let (mut left, mut right, mut abs) = (0.0, 0.0, 0.0);
-        for (i, &(x, w)) in rule.halves.iter().enumerate() {
-            let y = g(k, m + c * x)?;
-            ys[i] = y;
-            if i < n {
-                left += c * w * y;
-            } else {
-                right += c * w * y;
-            }
-            abs += c * w * y.abs();
+    }
+}
+
+/// The points at which [`panel`] needs the integrand on [a, b]: the halves' nodes, then
+/// the midpoint.
+fn split_nodes(rule: &AdaptiveRule, (a, b): (f64, f64)) -> impl Iterator<Item = f64> + '_ {
+    let (c, m) = (0.5 * (b - a), 0.5 * (a + b));
+    rule.halves.iter().map(move |&(x, _)| m + c * x).chain(std::iter::once(m))
+}
+
+/// A panel of interval k on [a, b] from the integrand at its ends, the whole-panel rule's
+/// value, and the integrand at [`split_nodes`] (`ys`: 2n halves' values, then the midpoint).
+fn panel(
+    rule: &AdaptiveRule,
+    k: usize,
+    (a, b): (f64, f64),
+    (fa, fb): (f64, f64),
+    whole: f64,
+    ys: &[f64],
+    noise: f64,
+) -> Panel {
+    let (c, n) = (0.5 * (b - a), rule.gl.len());
+    let (ys, fm) = (&ys[..2 * n], ys[2 * n]);
+    let (mut left, mut right, mut abs) = (0.0, 0.0, 0.0);
+    for (i, (&(_, w), &y)) in rule.halves.iter().zip(ys).enumerate() {
+        if i < n {
+            left += c * w * y;
+        } else {
+            right += c * w * y;
         }
-        // each half's polynomial through its nodes, extrapolated to the half's ends, against
-        // the integrand there: a feature hidden between an end and the nearest node, where
-        // every Gauss rule sees the same smooth function, shows as a mismatch, and costs at
-        // most mismatch x sliver
-        // (a smooth integrand's own extrapolation error is discounted: the extrapolations
-        // through n and through n - 1 nodes differ by about that much, while a hidden
-        // feature, seen by no node, moves neither)
-        let fm = g(k, m)?;
-        let size = ys.iter().fold(fa.abs().max(fb.abs()), |s, y| s.max(y.abs()));
-        let noise = 2.0 * rule.gain * NOISE * size;
-        let dot = |basis: &[f64], y: &[f64]| basis.iter().zip(y).map(|(p, y)| p * y).sum::<f64>();
-        let signal = |full: &[f64], low: &[f64], y: &[f64], f_end: f64| {
-            let p = dot(full, y);
-            ((p - f_end).abs() - DISCOUNT * (p - dot(low, y)).abs() - noise).max(0.0)
-        };
-        let mismatch = signal(&rule.at_lo, &rule.low_lo, &ys[..n], fa)
-            .max(signal(&rule.at_hi, &rule.low_hi, &ys[..n], fm))
-            .max(signal(&rule.at_lo, &rule.low_lo, &ys[n..], fm))
-            .max(signal(&rule.at_hi, &rule.low_hi, &ys[n..], fb));
-        let ends = END_SAFETY * mismatch * rule.sliver * (b - a);
-        Ok(Panel {
-            ys: ys.clone(),
-            k,
-            a,
-            b,
-            fa,
-            fm,
-            fb,
-            left,
-            right,
-            abs,
-            error: (WHOLE_SAFETY * (whole - (left + right)).abs()).max(ends),
-        })
+        abs += c * w * y.abs();
+    }
+    // each half's polynomial through its nodes, extrapolated to the half's ends, against
+    // the integrand there: a feature hidden between an end and the nearest node, where
+    // every Gauss rule sees the same smooth function, shows as a mismatch, and costs at
+    // most mismatch x sliver
+    // (a smooth integrand's own extrapolation error is discounted: the extrapolations
+    // through n and through n - 1 nodes differ by about that much, while a hidden
+    // feature, seen by no node, moves neither)
+    let size = ys.iter().fold(fa.abs().max(fb.abs()), |s, y| s.max(y.abs()));
+    let noise = 2.0 * rule.gain * noise * size;
+    let dot = |basis: &[f64], y: &[f64]| basis.iter().zip(y).map(|(p, y)| p * y).sum::<f64>();
+    let signal = |full: &[f64], low: &[f64], y: &[f64], f_end: f64| {
+        let p = dot(full, y);
+        ((p - f_end).abs() - DISCOUNT * (p - dot(low, y)).abs() - noise).max(0.0)
     };
-    let mut panels: Vec<Panel> = Vec::new();
+    let mismatch = signal(&rule.at_lo, &rule.low_lo, &ys[..n], fa)
+        .max(signal(&rule.at_hi, &rule.low_hi, &ys[..n], fm))
+        .max(signal(&rule.at_lo, &rule.low_lo, &ys[n..], fm))
+        .max(signal(&rule.at_hi, &rule.low_hi, &ys[n..], fb));
+    let ends = END_SAFETY * mismatch * rule.sliver * (b - a);
+    Panel {
+        ys: ys.to_vec(),
+        k,
+        a,
+        b,
+        fa,
+        fm,
+        fb,
+        left,
+        right,
+        abs,
+        error: (WHOLE_SAFETY * (whole - (left + right)).abs()).max(ends),
+    }
+}
+
+/// Evaluates the integrand at a batch of (interval, t) points.
+type Batch<'a, E> = dyn FnMut(&[(usize, f64)]) -> Result<Vec<f64>, E> + 'a;
+
+fn integrate_core<E: From<CoreError>>(
+    what: &'static str,
+    eval: &mut Batch<'_, E>,
+    map: Substitution<'_>,
+    rule: &AdaptiveRule,
+    tol: QuadTolerance,
+) -> Result<(Integral, Vec<PanelNodes>), E> {
+    let breaks = map.breaks;
+    let noise = tol.noise.max(NOISE);
+    let mut evaluations = 0usize;
+    let mut eval = |pts: &[(usize, f64)]| {
+        evaluations += pts.len();
+        eval(pts)
+    };
+    // the starting panels of every interval: (k, a, b) and the points where the integrand
+    // is needed at their ends
+    let mut pieces: Vec<(usize, f64, f64)> = Vec::new();
+    let mut end_points: Vec<(usize, f64)> = Vec::new();
+    let mut end_index: Vec<usize> = Vec::new(); // first end of each piece in end_points
     for k in 0..breaks.len().saturating_sub(1) {
-        let (lo, hi) = if substituted(k) {
+        let (lo, hi) = if map.substituted(k) {
             (0.0, 1.0)
         } else {
             (breaks[k], breaks[k + 1])
@@ -793,15 +912,15 @@ pub fn integrate_panels<E: From<CoreError>>(
             continue;
         }
         let span = breaks[k + 1] - breaks[k];
-        let pieces = if tol.max_width > 0.0 {
+        let count = if tol.max_width > 0.0 {
             ((span / tol.max_width).ceil() as usize).clamp(1, 10_000)
         } else {
             1
         };
-        let cuts: Vec<f64> = linspace(lo, hi, pieces + 1).collect();
+        let cuts: Vec<f64> = linspace(lo, hi, count + 1).collect();
         // end values: one-sided just inside a break, exact at the cuts in between
         let inside = 1e-12 * (hi - lo);
-        let mut ends: Vec<f64> = Vec::with_capacity(cuts.len());
+        let first = end_points.len();
         for (i, &t) in cuts.iter().enumerate() {
             let t = if i == 0 {
                 t + inside
@@ -810,19 +929,40 @@ pub fn integrate_panels<E: From<CoreError>>(
             } else {
                 t
             };
-            ends.push(g(k, t)?);
+            end_points.push((k, t));
         }
-        for (w, e) in cuts.windows(2).zip(ends.windows(2)) {
-            let mut whole = 0.0;
-            for (t, wt) in rule.gl.mapped(w[0], w[1]) {
-                whole += wt * g(k, t)?;
-            }
-            panels.push(split(&mut g, k, (w[0], w[1]), (e[0], e[1]), whole)?);
+        for (i, w) in cuts.windows(2).enumerate() {
+            pieces.push((k, w[0], w[1]));
+            end_index.push(first + i);
         }
     }
+    let end_values = eval(&end_points)?;
+    // the whole-panel rule and the split nodes of every starting panel, in one batch
+    let per_piece = rule.gl.len() + rule.halves.len() + 1;
+    let inner: Vec<(usize, f64)> = pieces
+        .iter()
+        .flat_map(|&(k, a, b)| {
+            rule.gl
+                .mapped(a, b)
+                .map(|(t, _)| t)
+                .chain(split_nodes(rule, (a, b)))
+                .map(move |t| (k, t))
+        })
+        .collect();
+    let inner_values = eval(&inner)?;
+    let mut panels: Vec<Panel> = pieces
+        .iter()
+        .zip(&end_index)
+        .zip(inner_values.chunks(per_piece))
+        .map(|((&(k, a, b), &e), ys)| {
+            let n = rule.gl.len();
+            let whole: f64 = rule.gl.mapped(a, b).zip(&ys[..n]).map(|((_, w), y)| w * y).sum();
+            panel(rule, k, (a, b), (end_values[e], end_values[e + 1]), whole, &ys[n..], noise)
+        })
+        .collect();
     // Noise floor: no estimate is trusted below the integrand's noise; a target below the
     // floor is raised to it.
-    let floor_rel = 8.0 * NOISE;
+    let floor_rel = 8.0 * noise;
     let error_of = |p: &Panel| p.error.max(floor_rel * p.abs);
     let mut heap: std::collections::BinaryHeap<(Key, usize)> = panels
         .iter()
@@ -898,9 +1038,15 @@ pub fn integrate_panels<E: From<CoreError>>(
             let p = &panels[worst];
             (p.fa, p.fm, p.fb, p.left, p.right)
         };
-        // the parent's halves are the children's whole-panel values
-        let left = split(&mut g, k, (a, m), (fa, fm), pl)?;
-        let right = split(&mut g, k, (m, b), (fm, fb), pr)?;
+        // both children's nodes in one batch; the parent's halves are their whole-panel values
+        let pts: Vec<(usize, f64)> = split_nodes(rule, (a, m))
+            .chain(split_nodes(rule, (m, b)))
+            .map(|t| (k, t))
+            .collect();
+        let ys = eval(&pts)?;
+        let (yl, yr) = ys.split_at(rule.halves.len() + 1);
+        let left = panel(rule, k, (a, m), (fa, fm), pl, yl, noise);
+        let right = panel(rule, k, (m, b), (fm, fb), pr, yr, noise);
         abs += left.abs + right.abs - panels[worst].abs;
         value_now += left.left + left.right + right.left + right.right
             - panels[worst].left
@@ -1110,6 +1256,7 @@ mod tests {
             abs: 0.0,
             max_width: 0.0,
             max_panels: 10_000,
+            noise: NOISE,
         }
     }
 

@@ -171,9 +171,15 @@ pub struct LengthScales {
 /// against the separation d (m) of the mean plane of asperity heights from the flat.
 ///
 /// History is data: [`SurfaceLaw::load`] returns a new history and never mutates.
-pub trait SurfaceLaw {
+///
+/// A law is `Sync` and its history `Send + Sync`: the switch model evaluates independent
+/// pressures (a quadrature panel's nodes, the pull-out candidates) in parallel. A law is a
+/// function of its arguments, so this costs nothing; a law that caches must do so behind a
+/// lock. Histories compare with `PartialEq`: a cycle that starts from the same history as
+/// the one before repeats it, and is not computed again.
+pub trait SurfaceLaw: Sync {
     /// What the surface remembers of its loading.
-    type History: Clone + std::fmt::Debug;
+    type History: Clone + std::fmt::Debug + PartialEq + Send + Sync;
 
     /// History of a surface never pressed.
     fn virgin(&self) -> Self::History;

@@ -1,6 +1,6 @@
 use crate::error::GwError;
 use crate::history::GwHistory;
-use contact_core::numeric::{brent_from, integrate, AdaptiveRule, Integral, QuadTolerance, Sample, Tolerance};
+use contact_core::numeric::{brent_from, integrate, AdaptiveRule, Integral, QuadTolerance, Sample, Tolerance, NOISE};
 use contact_core::{
     positive, AsperityHistory, AsperityModel, CoreError, Estimate, LawError, LengthScales, Path,
     SurfaceLaw,
@@ -395,6 +395,12 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         let us: Vec<f64> = points.iter().map(|h| h / sigma).collect();
         let q = self.quadrature;
         let n = self.density();
+        // the interference h - d carries the rounding of the heights: over a range of
+        // heights much narrower than the heights themselves (a flat just inside the
+        // highest asperity's reach) that is a large part of it
+        let (h_lo, h_hi) = (points[0], points[points.len() - 1]);
+        let magnitude = h_lo.abs().max(h_hi.abs()).max(d.abs());
+        let noise = NOISE * (magnitude / (h_hi - h_lo)).max(1.0);
         let tol = QuadTolerance {
             rel: rel_tol,
             // where the pressure nearly cancels, stop at a thousandth of the target relative
@@ -403,6 +409,7 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
             abs: q.abs_tol / n,
             max_width: START_PANEL_SIGMAS,
             max_panels: 20_000,
+            noise,
         };
         // integrand in u = h/sigma_s: F(sigma u - d) phi(u)
         let r = integrate(
@@ -436,7 +443,7 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
     }
 }
 
-impl<M: AsperityModel> SurfaceLaw for GreenwoodWilliamson<M> {
+impl<M: AsperityModel + Sync> SurfaceLaw for GreenwoodWilliamson<M> {
     type History = GwHistory;
 
     fn virgin(&self) -> GwHistory {

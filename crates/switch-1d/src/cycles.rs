@@ -1,9 +1,10 @@
 use crate::error::SwitchError;
 use contact_core::numeric::{
-    brent_from, geomspace, integrate_panels, linspace, refine_minima, AdaptiveRule,
-    Interpolant, PanelNodes, QuadTolerance, Sample, Tolerance,
+    brent_from, geomspace, integrate_panels_par, linspace, refine_minima_par, AdaptiveRule,
+    Interpolant, PanelNodes, QuadTolerance, Sample, Tolerance, NOISE,
 };
-use contact_core::{positive, CoreError, LengthScales, Path, SurfaceLaw};
+use contact_core::{par, positive, CoreError, LengthScales, Path, SurfaceLaw};
+use std::sync::Mutex;
 
 /// One point of a pressure curve: separation d (m), pressure (Pa, compressive > 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -83,22 +84,27 @@ const DEPTH_LIMIT: f64 = 1e4;
 struct Approach<'a, S: SurfaceLaw> {
     surface: &'a S,
     history: &'a S::History,
-    errors: Vec<(f64, f64)>,
+    /// (d, error estimate) of every evaluation, in any order (they run in parallel).
+    errors: Mutex<Vec<(f64, f64)>>,
 }
 
 impl<S: SurfaceLaw> Approach<'_, S> {
-    fn p(&mut self, d: f64) -> Result<f64, SwitchError> {
+    fn p(&self, d: f64) -> Result<f64, SwitchError> {
         let e = self.surface.pressure_estimate(d, self.history, Path::Approach)?;
-        self.errors.push((d, e.error));
+        // a poisoned lock only follows a panic elsewhere; the list is still whole
+        self.errors
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push((d, e.error));
         Ok(e.value)
     }
 
     /// Integral of the pressure error estimates over [lo, hi] (J/m^2), trapezoidal on the
     /// evaluations made (a dense set: the quadrature nodes).
     fn error_integral(&mut self, lo: f64, hi: f64) -> f64 {
-        self.errors.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let inside: Vec<&(f64, f64)> = self
-            .errors
+        let errors = self.errors.get_mut().unwrap_or_else(|e| e.into_inner());
+        errors.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        let inside: Vec<&(f64, f64)> = errors
             .iter()
             .filter(|e| e.0 >= lo && e.0 <= hi)
             .collect();
@@ -131,6 +137,20 @@ pub fn end_of_impact<S: SurfaceLaw>(
     film: ImpactFilm,
     precision: Precision,
 ) -> Result<EndOfImpact, SwitchError> {
+    end_of_impact_near(surface, history, impact_energy, film, precision, None)
+}
+
+/// [`end_of_impact`] with a guess of d_e (the previous cycle's): the first step of the
+/// search then reaches just past it. Only the cost depends on the guess: the first closure
+/// is found wherever it lies.
+fn end_of_impact_near<S: SurfaceLaw>(
+    surface: &S,
+    history: &S::History,
+    impact_energy: f64,
+    film: ImpactFilm,
+    precision: Precision,
+    guess: Option<f64>,
+) -> Result<EndOfImpact, SwitchError> {
     positive("impact_energy", impact_energy)?;
     positive("film_thickness", film.thickness)?;
     positive("film_youngs_modulus", film.youngs_modulus)?;
@@ -138,7 +158,9 @@ pub fn end_of_impact<S: SurfaceLaw>(
     let scales = surface.length_scales(history)?;
     let target = precision.d_e * scales.roughness;
     let mut tighten = 1.0;
-    let mut end = solve_eq17(surface, history, impact_energy, film, precision, scales, tighten)?;
+    let balance = Balance { energy: impact_energy, film, precision, scales, guess };
+    let solve = |tighten| solve_eq17(surface, history, &balance, tighten);
+    let mut end = solve(tighten)?;
     // the energy tolerance assumed a typical depth below the first touch: tighten by what
     // the error estimate says, twice at most
     for _ in 0..2 {
@@ -146,20 +168,27 @@ pub fn end_of_impact<S: SurfaceLaw>(
             break;
         }
         tighten *= (0.3 * target / end.error).clamp(1e-6, 0.5);
-        end = solve_eq17(surface, history, impact_energy, film, precision, scales, tighten)?;
+        end = solve(tighten)?;
     }
     Ok(end)
+}
+
+/// The energy balance of eq 17 to solve, and what the search knows beforehand.
+struct Balance {
+    energy: f64,
+    film: ImpactFilm,
+    precision: Precision,
+    scales: LengthScales,
+    guess: Option<f64>,
 }
 
 fn solve_eq17<S: SurfaceLaw>(
     surface: &S,
     history: &S::History,
-    energy: f64,
-    film: ImpactFilm,
-    precision: Precision,
-    scales: LengthScales,
+    balance: &Balance,
     tighten: f64,
 ) -> Result<EndOfImpact, SwitchError> {
+    let Balance { energy, film, precision, scales, guess } = *balance;
     let sigma = scales.roughness;
     let top = surface.reach(history, Path::Approach)?;
     let tol_d = precision.d_e * sigma;
@@ -172,28 +201,33 @@ fn solve_eq17<S: SurfaceLaw>(
         abs: ENERGY_SHARE * precision.d_e * tighten * energy,
         max_width: 0.0,
         max_panels: 4000,
+        noise: NOISE,
     };
     let mut kinks = surface.kinks(history);
     kinks.sort_by(|a, b| b.total_cmp(a));
     let mut ap = Approach {
         surface,
         history,
-        errors: Vec::new(),
+        errors: Mutex::new(Vec::new()),
     };
-    let integral = |ap: &mut Approach<S>, lo: f64, hi: f64| {
+    let integral = |ap: &Approach<S>, lo: f64, hi: f64| {
         let mut breaks = vec![lo];
         breaks.extend(kinks.iter().rev().filter(|&&k| k > lo && k < hi));
         breaks.push(hi);
-        integrate_panels("eq 17 energy integral", |x| ap.p(x), &breaks, false, &rule, quad)
+        integrate_panels_par("eq 17 energy integral", |x| ap.p(x), &breaks, false, &rule, quad)
     };
     let mut hi = top;
     let mut work = 0.0; // integral of p_L from hi to top
     let mut work_error = 0.0;
-    let mut step = 0.25 * sigma;
+    let mut step = match guess {
+        // a quarter of sigma past the guess: between cycles d_e moves by less
+        Some(g) if g < top => top - g + 0.25 * sigma,
+        _ => 0.25 * sigma,
+    };
     let floor = scales.deepest.max(top - DEPTH_LIMIT * sigma);
     while hi > floor {
         let lo = hi - step;
-        let (int, mut panels) = integral(&mut ap, lo, hi)?;
+        let (int, mut panels) = integral(&ap, lo, hi)?;
         panels.sort_by(|a, b| b.a.total_cmp(&a.a));
         if let Some(closure) = first_closure(&panels, work, film, energy, tol_d)? {
             work_error += int.error;
@@ -208,7 +242,7 @@ fn solve_eq17<S: SurfaceLaw>(
             let mut slope = 0.0;
             for _ in 0..6 {
                 p_x = ap.p(x)?;
-                let (w, _) = integral(&mut ap, x, panel_top)?;
+                let (w, _) = integral(&ap, x, panel_top)?;
                 let g = work_above + w.value + film.energy(p_x) - energy;
                 // dG/dx = -p - (p t_s/E) |dp/dx|; dp/dx from the interpolant
                 let dp = panel_slope(&panels, x);
@@ -400,11 +434,8 @@ pub fn unload<S: SurfaceLaw>(
     let reach = surface.reach(history, path)?;
     let scales = surface.length_scales(history)?;
     let grid = pull_out_grid(d_e, reach, scales);
-    let mut ys = Vec::with_capacity(grid.len());
-    for &d in &grid {
-        ys.push(surface.pressure_scan(d, history, path)?);
-    }
-    let m = refine_minima(
+    let ys = par::map(&grid, |&d| surface.pressure_scan(d, history, path))?;
+    let m = refine_minima_par(
         "pull-out pressure",
         |x| Ok::<_, SwitchError>(surface.pressure(x, history, path)?),
         &grid,
@@ -417,14 +448,13 @@ pub fn unload<S: SurfaceLaw>(
     } else {
         (0.0, reach, 0.0)
     };
-    let curve = linspace(d_e, reach, if points == 0 { 0 } else { points.max(2) })
-        .map(|d| {
-            Ok(PressurePoint {
-                d,
-                pressure: surface.pressure(d, history, path)?,
-            })
+    let ds: Vec<f64> = linspace(d_e, reach, if points == 0 { 0 } else { points.max(2) }).collect();
+    let curve = par::map(&ds, |&d| {
+        Ok::<_, SwitchError>(PressurePoint {
+            d,
+            pressure: surface.pressure(d, history, path)?,
         })
-        .collect::<Result<Vec<_>, SwitchError>>()?;
+    })?;
     Ok(Unloading {
         pull_out_pressure: pull,
         pull_out_error: error,
@@ -575,25 +605,39 @@ pub fn run_cycles<S: SurfaceLaw>(
     let mut cycles: Vec<Cycle<S::History>> = Vec::new();
     let mut accommodated_after = None;
     let mut loading = Vec::new();
+    // the history the last cycle started from: a cycle starting from the same one repeats it
+    let mut last_start: Option<S::History> = None;
     for k in 1..=options.cycles {
         let scale = surface.length_scales(&hist)?.roughness;
-        let end = end_of_impact(surface, &hist, energy, impact.film, options.precision)?;
-        let new_hist = surface.load(&hist, end.d_e);
-        let unloading = unload(
-            surface,
-            &new_hist,
-            end.d_e,
-            options.unloading_points,
-            options.precision,
-        )?;
+        let (end, new_hist, unloading) = match cycles.last() {
+            Some(prev) if last_start.as_ref() == Some(&hist) => {
+                (prev.end, prev.history.clone(), prev.unloading.clone())
+            }
+            prev => {
+                let guess = prev.map(|c| c.end.d_e);
+                let end =
+                    end_of_impact_near(surface, &hist, energy, impact.film, options.precision, guess)?;
+                let new_hist = surface.load(&hist, end.d_e);
+                let unloading = unload(
+                    surface,
+                    &new_hist,
+                    end.d_e,
+                    options.unloading_points,
+                    options.precision,
+                )?;
+                (end, new_hist, unloading)
+            }
+        };
+        last_start = Some(hist.clone());
         if k == 1 && options.loading_points > 0 {
             let top = surface.reach(&hist, Path::Approach)?;
-            for d in linspace(end.d_e, top, options.loading_points.max(2)) {
-                loading.push(PressurePoint {
+            let ds: Vec<f64> = linspace(end.d_e, top, options.loading_points.max(2)).collect();
+            loading = par::map(&ds, |&d| {
+                Ok::<_, SwitchError>(PressurePoint {
                     d,
                     pressure: surface.pressure(d, &hist, Path::Approach)?,
-                });
-            }
+                })
+            })?;
         }
         if let Some(prev) = cycles.last() {
             let dp = (unloading.pull_out_pressure - prev.unloading.pull_out_pressure).abs();
@@ -656,13 +700,14 @@ pub fn eq17_residual<S: SurfaceLaw>(
         abs: 0.0,
         max_width: 0.0,
         max_panels: 100_000,
+        noise: NOISE,
     };
     let mut breaks = vec![d];
     let mut kinks = surface.kinks(history);
     kinks.sort_by(f64::total_cmp);
     breaks.extend(kinks.into_iter().filter(|&k| k > d && k < top));
     breaks.push(top);
-    let (w, _) = integrate_panels(
+    let (w, _) = integrate_panels_par(
         "eq 17 residual",
         |x| Ok::<_, SwitchError>(surface.pressure(x, history, Path::Approach)?),
         &breaks,

@@ -164,9 +164,17 @@ fn once_an_impact_stays_above_the_deepest_point_every_later_cycle_repeats_exactl
 fn elastic_surface_repeats_every_cycle() {
     let gw = surface(Elastic::new(paper::RADIUS).unwrap(), mk(), SIGMA);
     let run = run_cycles(&gw, gw.virgin(), impact(0.5), quick(3), &mut |_| {}).unwrap();
+    // the same balance each cycle; later cycles start their search from the previous
+    // d_e, so they agree within the error estimates rather than to the bit
+    let first = &run.cycles[0];
     for c in &run.cycles[1..] {
-        assert_eq!(c.d_e(), run.cycles[0].d_e());
-        assert_eq!(c.unloading, run.cycles[0].unloading);
+        let dd = (c.d_e() - first.d_e()).abs();
+        assert!(dd <= c.end.error + first.end.error, "d_e moved {dd:e}");
+        let dp = (c.unloading.pull_out_pressure - first.unloading.pull_out_pressure).abs();
+        assert!(
+            dp <= c.unloading.pull_out_error + first.unloading.pull_out_error + 1e-12 * first.unloading.pull_out_pressure,
+            "pull-out moved {dp:e}"
+        );
     }
     assert_eq!(run.accommodated_after, Some(1));
 }
