@@ -267,7 +267,6 @@ fn fraction_beyond_the_fit_range_follows_the_gaussian_tail() {
 #[test]
 fn load_share_beyond_counts_force_not_asperities() {
     let gw = ru_surface(Quadrature::default());
-    let dcp = gw.asperity().delta_cp();
     let d = -0.5 * SIGMA;
     let hist = gw.virgin();
     // ratio 0: every loaded asperity counts; the share is the whole load
@@ -280,16 +279,4 @@ fn load_share_beyond_counts_force_not_asperities() {
         / gw.fraction_beyond(&hist.loaded(d), 0.0);
     assert!(share > count && share < 1.0, "share {share} count {count}");
     assert_eq!(gw.load_share_beyond(d, &hist, Path::Approach, 1e6).unwrap(), 0.0);
-    let _ = dcp;
-}
-#[test]
-fn dbg_print() {
-    let hist = GwHistory::Flat { deepest: 0.5 * SIGMA };
-    for rel in [1e-4, 1e-6, 1e-8, 1e-10, 1e-14] {
-        let gw = ru_surface(q(rel));
-        for (d, path) in cases() {
-            let r = gw.pressure_integral(d, &hist, path).unwrap();
-            eprintln!("rel {rel:e} d/s {:.2} {path:?}: {:.10e} err {:.2e} evals {}", d / SIGMA, r.value, r.error, r.evaluations);
-        }
-    }
 }
