@@ -3,7 +3,7 @@
 //! struct (in `commands/`): a new subcommand is one module and one variant here.
 
 use crate::commands::{
-    self, asperity::AsperityCommand, md::MdCommand, print::SceneCommand,
+    self, asperity::AsperityCommand, law::LawCommand, md::MdCommand, print::SceneCommand,
     surface::SurfaceCommand, switch::SwitchCommand,
 };
 use crate::error::Error;
@@ -38,6 +38,9 @@ pub enum Command {
     Surface(SurfaceCommand),
     /// The micro-switch cycle by cycle: d_e, pull-out pressure, accommodation, stiction.
     Switch(SwitchCommand),
+    /// The rough surface's contact law p(d; d_min, path) tabulated for an FE code (law.json,
+    /// law.csv); `law eval` evaluates a law file at one point.
+    Law(LawCommand),
     /// Print an embedded scene as TOML, with every accepted key, to start a scene from.
     Scene(SceneCommand),
 }
@@ -69,6 +72,7 @@ pub fn execute(command: Option<Command>) -> Result<String, Error> {
         Command::Asperity(c) => commands::pipeline(&c),
         Command::Surface(c) => commands::pipeline(&c),
         Command::Switch(c) => commands::pipeline(&c),
+        Command::Law(c) => c.execute(),
         Command::Scene(c) => Ok(c.execute()),
     }
 }

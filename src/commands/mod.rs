@@ -3,6 +3,7 @@
 //! what is computed; [`pipeline`] does the rest, the same way for every command.
 
 pub mod asperity;
+pub mod law;
 pub mod md;
 pub mod print;
 pub mod surface;
