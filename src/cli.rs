@@ -3,8 +3,9 @@
 //! struct (in `commands/`): a new subcommand is one module and one variant here.
 
 use crate::commands::{
-    self, asperity::AsperityCommand, calibrate::CalibrateCommand, md::MdCommand,
-    print::SceneCommand, surface::SurfaceCommand, switch::SwitchCommand,
+    self, asperity::AsperityCommand, calibrate::CalibrateCommand, design::DesignCommand,
+    law::LawCommand, md::MdCommand, print::SceneCommand, surface::SurfaceCommand,
+    switch::SwitchCommand,
 };
 use crate::error::Error;
 use crate::render;
@@ -40,10 +41,14 @@ pub enum Command {
     Switch(SwitchCommand),
     /// Fit the effective-radius constants of eq 13 to finite-element curves of one asperity.
     Calibrate(CalibrateCommand),
+    /// The rough surface's contact law p(d; d_min, path) tabulated for an FE code (law.json,
+    /// law.csv); `law eval` evaluates a law file at one point.
+    Law(LawCommand),
     /// Print an embedded scene as TOML, with every accepted key, to start a scene from.
     Scene(SceneCommand),
-    /// Stiction-free design: the critical value of a scene field, maps of the pull-out ratio, merge of map shards.
-    Design(commands::design::DesignCommand),
+    /// Stiction-free design: the critical value of a scene field, maps of the pull-out
+    /// ratio, merge of map shards.
+    Design(DesignCommand),
 }
 
 /// Runs the CLI on `args` and returns the exit status.
@@ -74,6 +79,7 @@ pub fn execute(command: Option<Command>) -> Result<String, Error> {
         Command::Surface(c) => commands::pipeline(&c),
         Command::Switch(c) => commands::pipeline(&c),
         Command::Calibrate(c) => c.execute(),
+        Command::Law(c) => c.execute(),
         Command::Scene(c) => Ok(c.execute()),
         Command::Design(c) => c.execute(),
     }

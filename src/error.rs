@@ -62,6 +62,15 @@ pub enum Error {
     /// `calibrate`: finite-element data (naming line and column), options, or the fit.
     #[error(transparent)]
     Calibrate(#[from] calibrate::CalibError),
+    /// A law file that cannot be read or is not a valid `law.json` (`stiction law eval`).
+    #[error("{}", law_file_message(file, source))]
+    LawFile {
+        /// The file.
+        file: String,
+        /// Why.
+        #[source]
+        source: contact_law::LawError,
+    },
     /// An error while running a scene, with the scene's file.
     #[error("{file}: {source}")]
     InScene {
@@ -70,6 +79,22 @@ pub enum Error {
         /// What went wrong.
         source: Box<Error>,
     },
+}
+
+/// "law file FILE: why" (an I/O error names the file once).
+fn law_file_message(file: &str, e: &contact_law::LawError) -> String {
+    match e {
+        contact_law::LawError::Io { source, .. } => format!("law file {file}: cannot read: {source}"),
+        contact_law::LawError::Format { path, message } => format!("law file {file}: {path}: {message}"),
+        contact_law::LawError::Json(m) => {
+            let m = m.strip_prefix(&format!("{file}: ")).unwrap_or(m);
+            format!("law file {file}: not valid JSON: {m}")
+        }
+        contact_law::LawError::TooLarge { limit, .. } => {
+            format!("law file {file}: larger than {limit} bytes: not a law file")
+        }
+        e => format!("law file {file}: {e}"),
+    }
 }
 
 /// Whether a core error is a value outside its domain (bad input) rather than a solver
@@ -115,6 +140,7 @@ impl Error {
     pub fn exit_code(&self) -> i32 {
         let input = match self {
             Error::InScene { source, .. } => return source.exit_code(),
+            Error::LawFile { .. } => true,
             Error::Scene(_) | Error::Usage { .. } | Error::Write { .. } | Error::Plot { .. } => true,
             Error::Core(e) => core_is_input(e),
             Error::MaugisKim(maugis_kim::MkError::Core(e)) => core_is_input(e),

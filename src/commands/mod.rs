@@ -5,6 +5,7 @@
 pub mod asperity;
 pub mod calibrate;
 pub mod design;
+pub mod law;
 pub mod md;
 pub mod print;
 pub mod surface;
