@@ -168,6 +168,14 @@ impl Error {
         }
     }
 
+    /// The error itself, without the scene file it is reported in.
+    pub fn cause(&self) -> &Error {
+        match self {
+            Error::InScene { source, .. } => source.cause(),
+            e => e,
+        }
+    }
+
     /// The same error, naming the scene it came from (scene errors name it already).
     pub fn in_scene(self, file: &str) -> Self {
         match self {

@@ -61,7 +61,11 @@ fn every_mode_meets_its_targets_on_random_mems_scenes() {
             if de > t.d_e_tolerance_sigma || po > t.pull_out_tolerance {
                 failures.push(format!("scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}"));
             }
-            assert_eq!(r.stiction, accurate.stiction || po > 0.0 && r.stiction, "scene {i} {mode}: verdict");
+            // the verdict may only differ where the ratio is within the mode's tolerance of 1
+            let closeness = (accurate.pull_out_ratio - 1.0).abs() / accurate.pull_out_ratio.max(f64::MIN_POSITIVE);
+            if closeness > 2.0 * t.pull_out_tolerance {
+                assert_eq!(r.stiction, accurate.stiction, "scene {i} {mode}: verdict at ratio {}", accurate.pull_out_ratio);
+            }
         }
         // no spurious jump of d_e between cycles
         for w in accurate.cycles.windows(2) {
@@ -93,6 +97,10 @@ fn modes_meet_their_targets_on_the_wide_ranges_where_the_model_has_an_answer() {
         };
         answered += 1;
         let sigma = s.surface.sigma_s;
+        for w in accurate.cycles.windows(2) {
+            let rise = (w[1].d_e - w[0].d_e) / sigma;
+            assert!(rise < 1e-3, "wide scene {i}: d_e rose by {rise} sigma_s");
+        }
         for mode in [Accuracy::Balanced, Accuracy::Fast] {
             let r = run(&s, mode, 0).unwrap_or_else(|e| panic!("wide scene {i} {mode} failed where accurate did not: {e}"));
             let t = mode.targets();
@@ -110,7 +118,7 @@ fn modes_meet_their_targets_on_the_wide_ranges_where_the_model_has_an_answer() {
 fn the_pull_out_does_not_depend_on_the_curves_written() {
     for (i, s) in scenes(Domain::Mems, 99, 4).into_iter().enumerate() {
         let a = run(&s, Accuracy::Fast, 0).unwrap();
-        let b = run(&s, Accuracy::Fast, 17).unwrap();
+        let b = run(&s, Accuracy::Fast, 300).unwrap();
         for (x, y) in a.cycles.iter().zip(&b.cycles) {
             assert_eq!(x.pull_out_pressure, y.pull_out_pressure, "scene {i} cycle {}", x.cycle);
             assert_eq!(x.d_e, y.d_e);

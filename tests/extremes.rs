@@ -4,6 +4,7 @@
 use stiction::accuracy::Accuracy;
 use stiction::commands::switch::{self, SwitchReport};
 use stiction::scene::{self, AsperityScene, CounterKind, Loaded, Scene, SwitchScene};
+use stiction::switch_1d::SwitchError;
 use stiction::Error;
 
 fn switch_scene() -> SwitchScene {
@@ -45,7 +46,7 @@ fn check(name: &str, s: &SwitchScene) -> Option<SwitchReport> {
             assert!(r.k_s.is_finite() && r.v_pull_in.is_finite());
             Some(r)
         }
-        Err(e) if e.to_string().contains("cannot absorb") => None,
+        Err(e) if matches!(e.cause(), Error::Switch(SwitchError::EnergyNotAbsorbed { .. })) => None,
         Err(e) => panic!("{name}: {e}"),
     }
 }
@@ -77,6 +78,7 @@ fn asperity_density_from_one_to_a_thousand_per_square_micron() {
 #[test]
 fn impact_energy_from_a_microjoule_to_ten_joules_per_square_metre() {
     let mut last = f64::INFINITY;
+    let mut answered = 0;
     for e in [1e-6, 1e-3, 0.1, 1.0, 10.0] {
         let mut s = switch_scene();
         s.switch.impact_energy = Some(e);
@@ -84,8 +86,11 @@ fn impact_energy_from_a_microjoule_to_ten_joules_per_square_metre() {
             // harder impacts go deeper
             assert!(r.cycles[0].d_e < last, "E_I {e}");
             last = r.cycles[0].d_e;
+            answered += 1;
         }
     }
+    // only an energy below what adhesion alone releases may go unanswered
+    assert!(answered >= 4, "{answered} of 5 energies answered");
 }
 
 #[test]

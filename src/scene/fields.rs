@@ -67,11 +67,13 @@ impl Domain {
                 open_below,
                 open_above,
             } => format!(
-                "finite and in {}{lo:e}, {hi:e}{}",
+                "finite and in {}{}, {}{}",
                 if open_below { "(" } else { "[" },
+                super::num(lo),
+                super::num(hi),
                 if open_above { ")" } else { "]" }
             ),
-            Domain::RangeOrInfinite { lo } => format!("in [{lo:e}, inf]"),
+            Domain::RangeOrInfinite { lo } => format!("in [{}, inf]", super::num(lo)),
             Domain::Count { lo, hi } => format!("an integer in [{lo}, {hi}]"),
             Domain::Choice(words) => format!("one of {}", words.join(", ")),
             Domain::Flag => "true or false".into(),
@@ -212,4 +214,32 @@ pub fn field(key: &str) -> Option<&'static Field> {
 /// The keys of one kind of scene, in table order.
 pub fn of(kind: Kind) -> impl Iterator<Item = &'static Field> {
     FIELDS.iter().filter(move |f| f.scenes.contains(&kind))
+}
+
+/// The scene-field table of `docs/validation.md` (section 6), generated from [`FIELDS`]:
+/// key, unit, domain, default, scenes. `tests/domains.rs` checks the document against it;
+/// `cargo xtask docs` rewrites it.
+pub fn markdown_table() -> String {
+    let mut s = String::from("| key | unit | accepts | default | scenes |\n|---|---|---|---|---|\n");
+    for f in FIELDS {
+        let scenes: Vec<&str> = f
+            .scenes
+            .iter()
+            .map(|k| match k {
+                Kind::Asperity => "asperity",
+                Kind::Surface => "surface",
+                Kind::Switch => "switch",
+            })
+            .collect();
+        let unit = if f.unit.is_empty() { "" } else { f.unit };
+        s += &format!(
+            "| `{}` | {} | {} | {} | {} |\n",
+            f.key,
+            unit,
+            f.domain.describe(),
+            f.default.map_or("-".to_string(), |d| format!("`{d}`")),
+            scenes.join(", ")
+        );
+    }
+    s
 }

@@ -1,6 +1,7 @@
 //! `cargo xtask verify [--update]`: solves every embedded scene and compares its curves
 //! and figures with the insta snapshots in `xtask/snapshots/`.
 //! `cargo xtask tradeoff`: the speed/accuracy trade of the paper's switch, per mode.
+//! `cargo xtask docs`: the scene-field table of docs/validation.md from the registry.
 //! `cargo xtask accuracy [--scenes N] [--seed S]`: each mode's error and speed-up over
 //! random scenes of the documented domains (docs/performance.md).
 //!
@@ -136,6 +137,23 @@ fn scenes() -> Result<Vec<(String, Value)>, String> {
     Ok(out)
 }
 
+/// `cargo xtask docs`: rewrites the scene-field table of docs/validation.md from the
+/// field registry (`tests/domains.rs` fails while the two differ).
+fn field_table() -> Result<(), String> {
+    const BEGIN: &str = "<!-- scene fields: begin -->";
+    const END: &str = "<!-- scene fields: end -->";
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/validation.md");
+    let doc = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+    let (Some(a), Some(b)) = (doc.find(BEGIN), doc.find(END)) else {
+        return Err(format!("{path}: no {BEGIN} ... {END} markers"));
+    };
+    let table = stiction::scene::fields::markdown_table();
+    let new = format!("{}{BEGIN}\n{table}{END}{}", &doc[..a], &doc[b + END.len()..]);
+    std::fs::write(path, new).map_err(|e| format!("{path}: {e}"))?;
+    println!("wrote the scene-field table of docs/validation.md");
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let update = match args
@@ -147,9 +165,10 @@ fn main() -> ExitCode {
         ["verify"] => false,
         ["verify", "--update"] => true,
         ["tradeoff"] => return report(tradeoff::main()),
+        ["docs"] => return report(field_table()),
         ["accuracy", rest @ ..] => return report(accuracy::main(rest)),
         _ => {
-            eprintln!("usage: cargo xtask verify [--update] | cargo xtask tradeoff | cargo xtask accuracy [--scenes N] [--seed S]");
+            eprintln!("usage: cargo xtask verify [--update] | cargo xtask tradeoff | cargo xtask accuracy [--scenes N] [--seed S] | cargo xtask docs");
             return ExitCode::from(2);
         }
     };

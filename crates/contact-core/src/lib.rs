@@ -20,6 +20,11 @@
 //! # Ok::<(), contact_core::CoreError>(())
 //! ```
 
+// The README's example is compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 mod error;
 mod material;
 pub mod numeric;

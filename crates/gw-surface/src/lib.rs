@@ -12,6 +12,11 @@
 //! a square-root singularity). The split points only save work: an undeclared kink of a
 //! user's law is refined around by the error control.
 
+// The README's example is compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 mod error;
 mod history;
 mod surface;

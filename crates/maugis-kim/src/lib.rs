@@ -22,6 +22,11 @@
 //! # Ok::<(), maugis_kim::MkError>(())
 //! ```
 
+// The README's example is compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 mod error;
 mod laws;
 pub mod md;

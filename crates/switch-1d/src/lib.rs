@@ -23,6 +23,11 @@
 //! assert!((impact.pull_out_ratio(2.0 * 16_880.0) - 0.5).abs() < 1e-15);
 //! ```
 
+// The README's example is compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 mod cycles;
 mod error;
 mod switch;
