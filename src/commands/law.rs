@@ -588,53 +588,10 @@ fn tabulate_scene(cmd: &LawCommand, loaded: &Loaded<SwitchScene>) -> Result<LawR
     law.set_partial_reload(partial.clone());
     law.set_scene(scene_echo(loaded, &laws, &histories)?)?;
 
-    let law_json = law.to_json_string();
-    let mut csv = Vec::new();
-    law.write_csv(&mut csv).map_err(|e| Error::Write {
-        path: "law.csv".into(),
-        source: e,
-    })?;
-    let law_csv = String::from_utf8(csv).map_err(|e| Error::Write {
-        path: "law.csv".into(),
-        source: std::io::Error::other(e),
-    })?;
-    let summary: Vec<BranchSummary> = law
-        .branches()
-        .iter()
-        .map(|b| BranchSummary {
-            d_min: b.d_min(),
-            start_pressure: b.retract().pressure()[0],
-            pull_out_d: b.pull_out().d,
-            pull_out_pressure: b.pull_out().pressure,
-            approach_most_tensile_d: b.approach().most_tensile().d,
-            approach_most_tensile_pressure: b.approach().most_tensile().pressure,
-            approach_reach: b.approach().reach(),
-            retract_reach: b.retract().reach(),
-            nodes: b.approach().d().len() + b.retract().d().len(),
-        })
-        .collect();
+    let (law_json, law_csv) = law_files(&law)?;
+    let summary = branch_summary(&law);
     let nodes = law.virgin().d().len() + summary.iter().map(|b| b.nodes).sum::<usize>();
-
-    // guards at the deepest history
-    let lo = histories.d_min_lo;
-    let mut warnings = Vec::new();
-    let share =
-        gw.load_share_beyond(lo, &GwHistory::VIRGIN, SurfacePath::Approach, FIT_RANGE_MAX)?;
-    warnings.extend(guards::surface_beyond_fit(share, lo));
-    let compressive = gw
-        .pressure(lo, &GwHistory::VIRGIN, SurfacePath::Approach)?
-        .max(0.0);
-    let deepest_pull = summary
-        .first()
-        .map_or(0.0, |b| -b.pull_out_pressure.min(0.0));
-    warnings.extend(guards::pressure_above_hardness(
-        c,
-        compressive,
-        deepest_pull,
-    ));
-    let plastic = model::asperity(c, false)?;
-    let elastic = model::asperity(c, true)?;
-    warnings.extend(guards::adhesion_yields(c, &plastic, &elastic)?);
+    let warnings = law_guards(c, &gw, &histories, &summary)?;
 
     let tab = law.tabulation().cloned();
     let mut report = LawReport {
@@ -672,6 +629,63 @@ fn tabulate_scene(cmd: &LawCommand, loaded: &Loaded<SwitchScene>) -> Result<LawR
     }
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// law.json and law.csv as text.
+fn law_files(law: &ContactLaw) -> Result<(String, String), Error> {
+    let mut csv = Vec::new();
+    law.write_csv(&mut csv).map_err(|e| Error::Write {
+        path: "law.csv".into(),
+        source: e,
+    })?;
+    let law_csv = String::from_utf8(csv).map_err(|e| Error::Write {
+        path: "law.csv".into(),
+        source: std::io::Error::other(e),
+    })?;
+    Ok((law.to_json_string(), law_csv))
+}
+
+/// One row per history: where it starts, its pull-out, its reaches, its size.
+fn branch_summary(law: &ContactLaw) -> Vec<BranchSummary> {
+    law.branches()
+        .iter()
+        .map(|b| BranchSummary {
+            d_min: b.d_min(),
+            start_pressure: b.retract().pressure()[0],
+            pull_out_d: b.pull_out().d,
+            pull_out_pressure: b.pull_out().pressure,
+            approach_most_tensile_d: b.approach().most_tensile().d,
+            approach_most_tensile_pressure: b.approach().most_tensile().pressure,
+            approach_reach: b.approach().reach(),
+            retract_reach: b.retract().reach(),
+            nodes: b.approach().d().len() + b.retract().d().len(),
+        })
+        .collect()
+}
+
+/// The guards at the deepest history tabulated.
+fn law_guards(
+    c: &crate::scene::Contact,
+    gw: &model::RoughSurface,
+    histories: &Histories,
+    summary: &[BranchSummary],
+) -> Result<Vec<Warning>, Error> {
+    let lo = histories.d_min_lo;
+    let mut warnings = Vec::new();
+    let share =
+        gw.load_share_beyond(lo, &GwHistory::VIRGIN, SurfacePath::Approach, FIT_RANGE_MAX)?;
+    warnings.extend(guards::surface_beyond_fit(share, lo));
+    let compressive = gw
+        .pressure(lo, &GwHistory::VIRGIN, SurfacePath::Approach)?
+        .max(0.0);
+    let deepest_pull = summary
+        .first()
+        .map_or(0.0, |b| -b.pull_out_pressure.min(0.0));
+    warnings.extend(guards::pressure_above_hardness(c, compressive, deepest_pull));
+    let plastic = model::asperity(c, false)?;
+    let elastic = model::asperity(c, true)?;
+    warnings.extend(guards::adhesion_yields(c, &plastic, &elastic)?);
+    Ok(warnings)
 }
 
 /// The law (MPa against nm): the virgin envelope and the branches of three histories, whole

@@ -8,13 +8,16 @@ use crate::model;
 use crate::plot::{self, Panel, Series};
 use crate::progress::Progress;
 use crate::render::{self, Format, OutputSet, Render, Warning};
-use crate::scene::{self, Checker, Loaded, SwitchScene};
+use crate::scene::{self, Checker, Contact, Loaded, SwitchScene};
 use asperity_plastic::FIT_RANGE_MAX;
 use contact_core::{Path, SurfaceLaw};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use switch_1d::{CycleOptions, Impact, ImpactFilm, PressurePoint, Switch, SwitchGeometry};
+use gw_surface::GwHistory;
+use switch_1d::{
+    CycleOptions, CycleRun, Impact, ImpactFilm, PressurePoint, Switch, SwitchGeometry,
+};
 
 /// The micro-switch cycle by cycle: d_e, pull-out pressure, accommodation, stiction.
 #[derive(Debug, Clone, clap::Args)]
@@ -286,43 +289,12 @@ pub struct SwitchReport {
 pub fn run(loaded: &Loaded<SwitchScene>, show_progress: bool) -> Result<SwitchReport, Error> {
     let s = &loaded.scene;
     let (_, es) = electrostatics(s, &loaded.file)?;
-    let c = &s.contact;
-    let laws = Laws {
-        adhesion: model::adhesion_name(c.adhesion_law),
-        plasticity: model::plasticity_name(c.plasticity_law),
-        yield_modulus: c.yield_modulus().as_str(),
-    };
-    let phi = s.switch.contact_area_fraction;
-    let mut report = SwitchReport {
-        title: loaded.title(),
-        laws,
-        accuracy: s.accuracy.targets(),
-        error_estimate: SwitchErrors { d_e: 0.0, pull_out: 0.0 },
-        k_s: es.k_s,
-        v_pull_in: es.v_pull_in,
-        dynamic_pull_in_voltage: es.dynamic_pull_in_voltage,
-        voltage: es.voltage,
-        impact_energy: es.impact_energy,
-        restoring_pressure: es.restoring_pressure,
-        contact_area_fraction: phi,
-        closes: es.closes,
-        drive: es.drive.clone(),
-        accommodation_tolerance: s.accommodation_tolerance,
-        loading: Vec::new(),
-        cycles: Vec::new(),
-        elastic: None,
-        accommodated_after: None,
-        largest_pull_out: 0.0,
-        pull_out_ratio: 0.0,
-        first_sticking_cycle: None,
-        stiction: false,
-        extrapolated_fraction: 0.0,
-        warnings: Vec::new(),
-        scene: s.clone(),
-    };
+    let mut report = empty_report(loaded, &es);
     if !es.closes {
         return Ok(report);
     }
+    let c = &s.contact;
+    let phi = s.switch.contact_area_fraction;
     // a pressure error below 1e-9 K_s d0 (per electrode area) does not matter
     let floor = s.accuracy.targets().pull_out_floor_of_restoring * es.restoring_pressure / phi;
     let gw = model::surface(c, &s.surface, s.accuracy, floor, false)?;
@@ -343,37 +315,106 @@ pub fn run(loaded: &Loaded<SwitchScene>, show_progress: bool) -> Result<SwitchRe
         loading_points: s.points,
         precision: s.accuracy.precision(es.restoring_pressure / phi),
     };
-    let mut progress = show_progress.then(|| Progress::new(s.cycles as u64, "cycles"));
-    let run = switch_1d::run_cycles(&gw, gw.virgin(), impact, options, &mut |cy| {
-        if let Some(p) = progress.as_mut() {
-            p.set(cy.cycle as u64);
-        }
-    });
-    if let Some(p) = &progress {
-        p.finish();
-    }
+    // the elastic comparison is independent of the cycles: both at once
+    let (run, elastic) = contact_core::par::join(
+        || {
+            let mut progress = show_progress.then(|| Progress::new(s.cycles as u64, "cycles"));
+            let run = switch_1d::run_cycles(&gw, gw.virgin(), impact, options, &mut |cy| {
+                if let Some(p) = progress.as_mut() {
+                    p.set(cy.cycle as u64);
+                }
+            });
+            if let Some(p) = &progress {
+                p.finish();
+            }
+            run
+        },
+        || {
+            s.elastic_comparison
+                .then(|| elastic_comparison(s, floor, impact, options))
+                .transpose()
+        },
+    );
     let run = run?;
-    if s.elastic_comparison {
-        let el = model::surface(c, &s.surface, s.accuracy, floor, true)?;
-        let one = CycleOptions {
-            cycles: 1,
-            loading_points: 0,
-            ..options
-        };
-        let e = switch_1d::run_cycles(&el, el.virgin(), impact, one, &mut |_| {})?;
-        let cy = &e.cycles[0];
-        report.elastic = Some(ElasticReport {
-            d_e: cy.d_e(),
-            pull_out_pressure: cy.unloading.pull_out_pressure,
-            pull_out_separation: cy.unloading.pull_out_separation,
-            pull_out_ratio: cy.pull_out_ratio,
-            sticks: cy.sticks,
-            unloading: cy.unloading.curve.clone(),
-        });
-    }
+    report.elastic = elastic?;
+    report.warnings = physics_guards(c, &gw, &run)?;
     let last = run.cycles.last().expect("at least one cycle");
     report.extrapolated_fraction = gw.fraction_beyond(&last.history, FIT_RANGE_MAX);
-    // guards: at the deepest end of impact, with the history before that cycle
+    record(&mut report, run);
+    Ok(report)
+}
+
+/// The report of a scene before any cycle: the laws, the drive, the targets.
+fn empty_report(loaded: &Loaded<SwitchScene>, es: &Electrostatics) -> SwitchReport {
+    let s = &loaded.scene;
+    let c = &s.contact;
+    SwitchReport {
+        title: loaded.title(),
+        laws: Laws {
+            adhesion: model::adhesion_name(c.adhesion_law),
+            plasticity: model::plasticity_name(c.plasticity_law),
+            yield_modulus: c.yield_modulus().as_str(),
+        },
+        accuracy: s.accuracy.targets(),
+        error_estimate: SwitchErrors { d_e: 0.0, pull_out: 0.0 },
+        k_s: es.k_s,
+        v_pull_in: es.v_pull_in,
+        dynamic_pull_in_voltage: es.dynamic_pull_in_voltage,
+        voltage: es.voltage,
+        impact_energy: es.impact_energy,
+        restoring_pressure: es.restoring_pressure,
+        contact_area_fraction: s.switch.contact_area_fraction,
+        closes: es.closes,
+        drive: es.drive.clone(),
+        accommodation_tolerance: s.accommodation_tolerance,
+        loading: Vec::new(),
+        cycles: Vec::new(),
+        elastic: None,
+        accommodated_after: None,
+        largest_pull_out: 0.0,
+        pull_out_ratio: 0.0,
+        first_sticking_cycle: None,
+        stiction: false,
+        extrapolated_fraction: 0.0,
+        warnings: Vec::new(),
+        scene: s.clone(),
+    }
+}
+
+/// The same surface with asperities that never yield, one cycle through `run_cycles`.
+fn elastic_comparison(
+    s: &SwitchScene,
+    floor: f64,
+    impact: Impact,
+    options: CycleOptions,
+) -> Result<ElasticReport, Error> {
+    let el = model::surface(&s.contact, &s.surface, s.accuracy, floor, true)?;
+    let one = CycleOptions {
+        cycles: 1,
+        loading_points: 0,
+        ..options
+    };
+    let e = switch_1d::run_cycles(&el, el.virgin(), impact, one, &mut |_| {})?;
+    let cy = &e.cycles[0];
+    Ok(ElasticReport {
+        d_e: cy.d_e(),
+        pull_out_pressure: cy.unloading.pull_out_pressure,
+        pull_out_separation: cy.unloading.pull_out_separation,
+        pull_out_ratio: cy.pull_out_ratio,
+        sticks: cy.sticks,
+        unloading: cy.unloading.curve.clone(),
+    })
+}
+
+/// The guards of a run: the load beyond the fits at the deepest end of impact (with the
+/// history before that cycle), adhesion that yields a virgin asperity, pressures above the
+/// hardness or the interface's strength.
+fn physics_guards(
+    c: &Contact,
+    gw: &model::RoughSurface,
+    run: &CycleRun<GwHistory>,
+) -> Result<Vec<Warning>, Error> {
+    let mut warnings = Vec::new();
     let deepest = run
         .cycles
         .iter()
@@ -388,14 +429,17 @@ pub fn run(loaded: &Loaded<SwitchScene>, show_progress: bool) -> Result<SwitchRe
     };
     let at = run.cycles[deepest].d_e();
     let share = gw.load_share_beyond(at, &before, Path::Approach, FIT_RANGE_MAX)?;
-    report.warnings.extend(guards::surface_beyond_fit(share, at));
+    warnings.extend(guards::surface_beyond_fit(share, at));
     let plastic = model::asperity(c, false)?;
     let elastic = model::asperity(c, true)?;
-    report.warnings.extend(guards::adhesion_yields(c, &plastic, &elastic)?);
+    warnings.extend(guards::adhesion_yields(c, &plastic, &elastic)?);
     let compressive = run.cycles.iter().map(|cy| cy.end.pressure).fold(0.0, f64::max);
-    report
-        .warnings
-        .extend(guards::pressure_above_hardness(c, compressive, run.largest_pull_out));
+    warnings.extend(guards::pressure_above_hardness(c, compressive, run.largest_pull_out));
+    Ok(warnings)
+}
+
+/// The cycles, the verdict and the error estimates of a run, into the report.
+fn record(report: &mut SwitchReport, run: CycleRun<GwHistory>) {
     report.error_estimate = SwitchErrors {
         d_e: run.cycles.iter().map(|cy| cy.end.error).fold(0.0, f64::max),
         pull_out: run.cycles.iter().map(|cy| cy.unloading.pull_out_error).fold(0.0, f64::max),
@@ -422,7 +466,6 @@ pub fn run(loaded: &Loaded<SwitchScene>, show_progress: bool) -> Result<SwitchRe
     report.pull_out_ratio = run.pull_out_ratio;
     report.first_sticking_cycle = run.first_sticking_cycle;
     report.stiction = run.stiction;
-    Ok(report)
 }
 
 /// The files `--out` writes.
@@ -559,6 +602,32 @@ pub fn plot_svg(r: &SwitchReport) -> Result<String, String> {
 
 impl Render for SwitchReport {
     fn table(&self) -> String {
+        let mut s = self.table_header();
+        if !self.closes {
+            let _ = writeln!(
+                s,
+                "\nverdict: the switch does not close: U = {:.4} V is below the dynamic pull-in voltage {:.4} V (released from rest under a step voltage, the electrode meets an energy barrier before contact); no stiction",
+                self.voltage, self.dynamic_pull_in_voltage
+            );
+            return s;
+        }
+        s += &self.table_cycles();
+        s += &self.table_verdict();
+        s
+    }
+
+    fn csv(&self) -> String {
+        self.cycles_csv()
+    }
+
+    fn warnings(&self) -> &[Warning] {
+        self.report_warnings()
+    }
+}
+
+impl SwitchReport {
+    /// Title, laws and accuracy, drive, restoring pressure.
+    fn table_header(&self) -> String {
         let mut s = String::new();
         let _ = writeln!(s, "{}", self.title);
         let _ = writeln!(
@@ -600,14 +669,12 @@ impl Render for SwitchReport {
                 format!("a fraction phi = {} of the electrode", self.contact_area_fraction)
             }
         );
-        if !self.closes {
-            let _ = writeln!(
-                s,
-                "\nverdict: the switch does not close: U = {:.4} V is below the dynamic pull-in voltage {:.4} V (released from rest under a step voltage, the electrode meets an energy barrier before contact); no stiction",
-                self.voltage, self.dynamic_pull_in_voltage
-            );
-            return s;
-        }
+        s
+    }
+
+    /// One row per cycle, and the elastic comparison.
+    fn table_cycles(&self) -> String {
+        let mut s = String::new();
         let _ = writeln!(s);
         let _ = writeln!(
             s,
@@ -647,6 +714,12 @@ impl Render for SwitchReport {
                 if e.sticks { "sticks" } else { "releases" }
             );
         }
+        s
+    }
+
+    /// Accommodation, the verdict and the error estimates.
+    fn table_verdict(&self) -> String {
+        let mut s = String::new();
         let _ = writeln!(s);
         match self.accommodated_after {
             Some(k) => {
@@ -683,7 +756,8 @@ impl Render for SwitchReport {
         s
     }
 
-    fn csv(&self) -> String {
+    /// The cycles as CSV (and the elastic comparison as a row `elastic`).
+    fn cycles_csv(&self) -> String {
         let mut s = String::from("cycle,d_e_m,pull_out_pressure_pa,pull_out_separation_m,sticks,pull_out_ratio\n");
         for c in &self.cycles {
             let _ = writeln!(
@@ -702,7 +776,7 @@ impl Render for SwitchReport {
         s
     }
 
-    fn warnings(&self) -> &[Warning] {
+    fn report_warnings(&self) -> &[Warning] {
         &self.warnings
     }
 }

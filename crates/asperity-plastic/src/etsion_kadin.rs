@@ -302,6 +302,21 @@ impl PlasticityLaw for EtsionKadin {
 }
 
 /// A plasticity law that never yields: the asperity keeps its radius and height.
+///
+/// ```
+/// use asperity_plastic::{ElastoPlasticAsperity, Elastic};
+/// use contact_core::{AsperityHistory, AsperityModel, Path, PlasticityLaw};
+/// use maugis_kim::Hertz;
+/// let law = Elastic::new(4e-6)?;
+/// assert_eq!(law.delta_cp(), f64::INFINITY);
+/// // with Hertz adhesion-free contact: F = K sqrt(R) delta^(3/2), the same on the way back
+/// let asperity = ElastoPlasticAsperity::new(law, Hertz::new(1e11)?);
+/// let loaded = asperity.force(1e-9, AsperityHistory::VIRGIN, Path::Approach)?;
+/// assert!((loaded - 1e11 * 2e-3 * 1e-9f64.powf(1.5)).abs() < 1e-18);
+/// let back = asperity.force(1e-9, AsperityHistory { delta_max: 5e-9 }, Path::Retract { from: 5e-9 })?;
+/// assert_eq!(back, loaded);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Elastic {
     radius: f64,

@@ -11,6 +11,25 @@
 //! rules (square-root substitution on the panel at the contact edge, where the force has
 //! a square-root singularity). The split points only save work: an undeclared kink of a
 //! user's law is refined around by the error control.
+//!
+//! ```
+//! use asperity_plastic::{ElastoPlasticAsperity, Elastic};
+//! use contact_core::{paper, Material, Pair, Path, SurfaceLaw};
+//! use gw_surface::{GreenwoodWilliamson, Quadrature, Roughness};
+//! use maugis_kim::Hertz;
+//! // Hertz asperities at d = 0: p = N K sqrt(R) sigma^(3/2) F_3/2(0), with
+//! // F_3/2(0) = integral of s^(3/2) phi(s) over s > 0 = 2^(1/4) Gamma(5/4) / sqrt(2 pi)
+//! let ru = Material::new(paper::RU)?;
+//! let pair = Pair::new(ru, Some(ru), paper::RADIUS)?;
+//! let asperity = ElastoPlasticAsperity::new(Elastic::new(paper::RADIUS)?, Hertz::new(pair.k())?);
+//! let rough = Roughness { sigma_s: paper::SIGMA_S, asperity_density: paper::ASPERITY_DENSITY };
+//! let gw = GreenwoodWilliamson::new(asperity, rough, Quadrature::default())?;
+//! let p = gw.pressure_estimate(0.0, &gw.virgin(), Path::Approach)?;
+//! let classic = paper::ASPERITY_DENSITY * pair.k() * paper::RADIUS.sqrt()
+//!     * paper::SIGMA_S.powf(1.5) * 0.430_019_993_662_26;
+//! assert!((p.value / classic - 1.0).abs() < 1e-9 && p.error < 1e-9 * p.value);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 // The README's example is compiled and run as a doctest.
 #[cfg(doctest)]
