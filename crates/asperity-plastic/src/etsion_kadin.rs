@@ -366,7 +366,8 @@ mod tests {
         (a - b).abs() <= rel * b.abs()
     }
 
-    // Values below were evaluated by hand (calculator) from the resolved equations:
+    // Values below are recomputed independently (plain Python from the equations of
+    // docs/theory.md) by docs/derivations/by_hand.py; the arithmetic in short:
     // E* = 410e9/0.91 Pa, C_v = 1.295 e^0.2208 = 1.6149608,
     // delta_CP = 4e-6 (pi 1.6149608 3.42e9 / (2 E*))^2 = 1.48317e-9 m,
     // a_CP = sqrt(4e-6 * 1.48317e-9) = 7.70239e-8 m, F_CP = (2/3) pi C_v S_Y R delta_CP;
@@ -379,15 +380,17 @@ mod tests {
         assert!(close(law.critical_contact_radius(), 7.70238991638839e-08, 1e-12));
         assert!(close(law.critical_force(), 6.862742594014353e-05, 1e-12));
         // eq 3 equals the Hertz force at delta_CP when eq 1 uses E*
-        let e_star = 410e9 / 0.91;
-        let hertz = 4.0 / 3.0 * e_star * 4e-6f64.sqrt() * law.delta_cp().powf(1.5);
+        let film = paper::RU;
+        let e_star = film.youngs_modulus / (1.0 - film.poisson_ratio * film.poisson_ratio);
+        let hertz = 4.0 / 3.0 * e_star * paper::RADIUS.sqrt() * law.delta_cp().powf(1.5);
         assert!(close(law.critical_force(), hertz, 1e-12));
         let printed = ru(YieldModulus::AsPrinted);
         assert!(close(printed.delta_cp(), 1.791052120036274e-09, 1e-12));
         assert!(close(printed.delta_cp() * 0.91 * 0.91, law.delta_cp(), 1e-12));
     }
 
-    // By hand for delta_max = 17, 34, 51 nm with delta_CP = 1.4831703 nm (omega = 11.462,
+    // docs/derivations/by_hand.py (block "residual_state_of_fig2_cases_by_hand");
+    // by hand for delta_max = 17, 34, 51 nm with delta_CP = 1.4831703 nm (omega = 11.462,
     // 22.924, 34.386): delta_res from eq 4, R_res = R (1 + 0.45337 (omega - 1)) from eq 5
     // (0.45337 = 1.275 (3.42/410)^0.216), R_eff(x = 1) = R (1 + 0.45337 (omega - 1) c1),
     // R_eff at x = 1/2 from eq 12 with c2(omega) and f(1/2).

@@ -27,12 +27,12 @@ fn below_yield_the_asperity_is_exactly_the_elastic_law() {
     let (ek, mk, _) = ru();
     let dcp = ek.delta_cp();
     let plastic = ElastoPlasticAsperity::new(ek, mk);
-    let elastic = ElastoPlasticAsperity::new(Elastic::new(4e-6).unwrap(), mk);
+    let elastic = ElastoPlasticAsperity::new(Elastic::new(paper::RADIUS).unwrap(), mk);
     for delta in [-0.3e-9, -0.1e-9, 0.0, 0.2 * dcp, 0.9 * dcp, dcp] {
         for path in [Path::Approach, Path::Retract { from: dcp }] {
             let a = plastic.force(delta, AsperityHistory::VIRGIN, path).unwrap();
             let b = elastic.force(delta, AsperityHistory::VIRGIN, path).unwrap();
-            let c = mk.force(4e-6, delta, path).unwrap();
+            let c = mk.force(paper::RADIUS, delta, path).unwrap();
             assert_eq!(a, b);
             assert_eq!(a, c);
         }
@@ -118,7 +118,7 @@ fn plastic_unloading_is_more_adhesive_than_elastic() {
     // the paper's central claim for one asperity: the flattened tip adheres more
     let (ek, mk, _) = ru();
     let plastic = ElastoPlasticAsperity::new(ek, mk);
-    let elastic = ElastoPlasticAsperity::new(Elastic::new(4e-6).unwrap(), mk);
+    let elastic = ElastoPlasticAsperity::new(Elastic::new(paper::RADIUS).unwrap(), mk);
     let pull_off = |asp: &dyn AsperityModel, dmax: f64| {
         let hist = AsperityHistory { delta_max: dmax };
         let j = asp.jumps(hist).unwrap();

@@ -1,8 +1,13 @@
 //! Analytic limits and invariants of the Maugis-Kim curve.
 
-use contact_core::{AdhesionLaw, Path};
+use contact_core::{paper, AdhesionLaw, Material, Pair, Path};
 use maugis_kim::{Branch, Dmt, DugdaleParams, Jkr, MaugisKim, MdCurve, LAMBDA_CRITICAL};
 use std::f64::consts::PI;
+
+/// K = 4/3 E* of the Ru sphere of Table 1 on a rigid flat.
+fn ru_on_rigid_k() -> f64 {
+    Pair::new(Material::new(paper::RU).unwrap(), None, paper::RADIUS).unwrap().k()
+}
 
 /// Residuals of eqs 8-10 for a contact point, each relative to the size of its terms.
 fn residuals(lambda: f64, p: &maugis_kim::MdPoint) -> (f64, f64, f64) {
@@ -158,8 +163,8 @@ fn jkr_law_agrees_with_maugis_kim_at_large_lambda() {
 fn dmt_law_agrees_with_maugis_kim_at_small_lambda_in_si() {
     // Ru on a rigid flat; a long Dugdale range makes lambda small. In contact the
     // cohesive zone shifts Delta by (8/3) sqrt(lambda/pi), so MK -> DMT like sqrt(lambda).
-    let k = 4.0 / 3.0 * 410e9 / 0.91;
-    let (w, r) = (1.0, 4e-6);
+    let k = ru_on_rigid_k();
+    let (w, r) = (paper::WORK_OF_ADHESION, paper::RADIUS);
     let worst = |z0: f64| {
         let mk = MaugisKim::new(DugdaleParams { k, work_of_adhesion: w, z0 }).unwrap();
         let dmt = Dmt::new(DugdaleParams { k, work_of_adhesion: w, z0 }).unwrap();
@@ -216,9 +221,9 @@ fn path_rule_jump_in_and_jump_out() {
 
 #[test]
 fn si_law_matches_nondimensional_curve() {
-    let k = 4.0 / 3.0 * 410e9 / 0.91;
-    let mk = MaugisKim::new(DugdaleParams { k, work_of_adhesion: 1.0, z0: 0.169e-9 }).unwrap();
-    let r = 4e-6;
+    let k = ru_on_rigid_k();
+    let mk = MaugisKim::new(DugdaleParams { k, work_of_adhesion: paper::WORK_OF_ADHESION, z0: paper::Z0 }).unwrap();
+    let r = paper::RADIUS;
     let sc = mk.scales(r).unwrap();
     let c = mk.curve(r).unwrap();
     let delta = 2e-9;

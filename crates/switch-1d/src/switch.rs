@@ -150,7 +150,7 @@ mod tests {
     fn stiffness_for_impact_energy_closes_the_energy_balance_at_pull_in() {
         let s = table2();
         let k = s.stiffness_for_impact_energy(0.5).unwrap();
-        // by hand: g = 2e-6 + 0.15e-6/7.6 = 2.019737e-6 m,
+        // docs/derivations/by_hand.py recomputes these; by hand: g = 2e-6 + 0.15e-6/7.6 = 2.019737e-6 m,
         // bracket = (4 g^3/27)(7.6/0.15e-6 - 1/g) - d0^2/2 = 5.9241e-11 m^2 -> K_s = 8.4402e9 Pa/m
         assert!((k / 8.440183830384662e9 - 1.0).abs() < 1e-12, "{k}");
         let v = s.pull_in_voltage(k);

@@ -47,7 +47,7 @@ fn plastic(
 
 const FILM: ImpactFilm = ImpactFilm {
     thickness: paper::FILM_THICKNESS,
-    youngs_modulus: 410e9,
+    youngs_modulus: paper::RU.youngs_modulus,
 };
 
 fn impact(energy: f64) -> Impact {
