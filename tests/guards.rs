@@ -43,7 +43,7 @@ fn the_table_says_what_was_given_and_what_was_derived() {
     let f = switch_scene("drive-a", &[]);
     let text = String::from_utf8(stiction(&["switch", "--scene", f.to_str().unwrap()]).stdout).unwrap();
     assert!(text.contains("K_s = 8.44018e9 Pa/m (derived)"), "{text}");
-    assert!(text.contains("E_I = 0.5 J/m^2 (given)"), "{text}");
+    assert!(text.contains("E_I = 5e-1 J/m^2 (given)"), "{text}");
     assert!(text.contains("eq 1 as_printed") && text.contains("accuracy fast") && text.contains("maugis_kim"), "{text}");
     assert!(text.contains("ratio"));
     let f = switch_scene("drive-b", &[("impact_energy", "k_s = 1e10\nvoltage = 60.0")]);

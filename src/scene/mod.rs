@@ -82,15 +82,13 @@ pub enum SceneError {
     },
 }
 
-/// A number as messages print it, with shortest round-trip digits: plain between 1e-3 and
-/// 1e4 (0.5, 1000), scientific outside (1e-9, 1e13).
+/// A number as messages print it: scientific notation, shortest round-trip digits (5e-1,
+/// 1e13), so every message reads the same way whatever the magnitude.
 pub fn num(v: f64) -> String {
     if v.is_nan() {
         "NaN".into()
     } else if v.is_infinite() {
         if v > 0.0 { "inf" } else { "-inf" }.into()
-    } else if v == 0.0 || (1e-3..1e4).contains(&v.abs()) {
-        format!("{v}")
     } else {
         format!("{v:e}")
     }
