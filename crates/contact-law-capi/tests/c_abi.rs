@@ -45,8 +45,12 @@ fn static_lib() -> PathBuf {
     })
 }
 
+/// A folder of this test process's own: test runners that start a process per test would
+/// otherwise write the same law file and driver at once.
 fn tmp() -> PathBuf {
-    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("contact-law-capi")
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("contact-law-capi")
+        .join(std::process::id().to_string())
 }
 
 /// The law file (tabulated once per test process) and the law read back from it.

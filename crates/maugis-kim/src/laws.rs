@@ -263,14 +263,36 @@ fn nd_path(path: Path, scale: f64) -> Path {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MaugisKim {
     p: DugdaleParams,
+    /// The radius-free factors of eq 7's scales and of lambda: with q = R^(1/3),
+    /// interference = i q, radius scale = r q^2, lambda = l q (one cube root per call).
+    i: f64,
+    r: f64,
+    l: f64,
 }
 
 impl MaugisKim {
     /// The law of a Dugdale interface.
     pub fn new(params: DugdaleParams) -> Result<Self, MkError> {
+        let p = params.validated()?;
+        let (k, w) = (p.k, p.work_of_adhesion);
         Ok(Self {
-            p: params.validated()?,
+            i: (PI * PI * w * w / (k * k)).cbrt(),
+            r: (PI * w / k).cbrt(),
+            l: 2.0 * (w / p.z0) * (1.0 / (PI * w * k * k)).cbrt(),
+            p,
         })
+    }
+
+    /// The scales and the curve of a sphere of `radius` (m) at once.
+    fn sphere(&self, radius: f64) -> Result<(Scales, MdCurve), MkError> {
+        positive("radius", radius)?;
+        let q = radius.cbrt();
+        let scales = Scales {
+            interference: self.i * q,
+            radius: self.r * q * q,
+            force: PI * self.p.work_of_adhesion * radius,
+        };
+        Ok((scales, MdCurve::new(self.l * q)?))
     }
 
     /// The transition parameter for a sphere of `radius` (m).
@@ -293,13 +315,11 @@ impl MaugisKim {
 impl AdhesionLaw for MaugisKim {
     fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
         finite("delta", delta)?;
-        let sc = self.scales(radius)?;
-        let curve = MdCurve::new(self.lambda(radius))?;
+        let (sc, curve) = self.sphere(radius)?;
         Ok(curve.force(delta / sc.interference, nd_path(path, sc.interference))? * sc.force)
     }
     fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
-        let sc = self.scales(radius)?;
-        let curve = MdCurve::new(self.lambda(radius))?;
+        let (sc, curve) = self.sphere(radius)?;
         Ok(Jumps {
             jump_in: curve.jump_in_delta() * sc.interference,
             jump_out: curve.turning_point()?.delta * sc.interference,
@@ -313,8 +333,7 @@ impl AdhesionLaw for MaugisKim {
     /// and contact branches, where the curvature of F(delta) changes; absent above
     /// lambda_c (the stable branch ends at the turning point first).
     fn kinks(&self, radius: f64) -> Result<Vec<Option<f64>>, LawError> {
-        let sc = self.scales(radius)?;
-        let curve = MdCurve::new(self.lambda(radius))?;
+        let (sc, curve) = self.sphere(radius)?;
         Ok(vec![(curve.lambda() <= crate::LAMBDA_CRITICAL)
             .then(|| curve.junction().delta * sc.interference)])
     }

@@ -122,7 +122,8 @@ struct Contact {
 impl Contact {
     fn at(lambda: f64, s: f64) -> Self {
         let t = s.atan();
-        let m = s.hypot(1.0);
+        // sqrt(1 + s^2) to an ulp or two, cheaper than hypot; hypot where s^2 overflows
+        let m = if s < 1e150 { (1.0 + s * s).sqrt() } else { s.hypot(1.0) };
         let s_over = s / (1.0 + m); // (m - 1)/s, no overflow
                                     // g1 = s + (m^2 - 2) t = (s - t) + s^2 t
         let g1 = s_minus_atan(s) + s * s * t;
@@ -163,6 +164,32 @@ impl Contact {
         let (s, m, t) = (self.s, self.m, self.t);
         let u = t + s / (m * m);
         (lambda * s * u, 4.0 / 3.0 * lambda * lambda * (u - s / m))
+    }
+
+    /// The point at u + du (u = ln s), extrapolated linearly from this one: where Newton's
+    /// next step is so small that its square is below rounding, this is the solution to
+    /// rounding without another evaluation. Derivatives in u = ln s: with P A^2 + Q A = 1,
+    /// A' = -A (P' A + Q')/(2 P A + Q); Delta = A^2 - (4 lambda/3) A s;
+    /// Fbar = A^2 (A - lambda g3), g3 = s + m^2 t, g3' = 2 + 2 s t; C = m A, m' = s/m.
+    fn extrapolated(&self, lambda: f64, du: f64) -> MdPoint {
+        let (s, m, t, a, p, q) = (self.s, self.m, self.t, self.a, self.p, self.q);
+        let (dp, dq) = self.d_pq(lambda);
+        let da = -a * (dp * a + dq) / (2.0 * p * a + q);
+        let g3 = s + m * m * t;
+        let d_delta = 2.0 * a * da - 4.0 / 3.0 * lambda * (da * s + a);
+        let d_force = 2.0 * a * da * (a - lambda * g3) + a * a * (da - lambda * (2.0 + 2.0 * s * t));
+        let dc = s / m * a + m * da;
+        // d/du = s d/ds
+        let h = s * du;
+        MdPoint {
+            a: a + da * h,
+            c: m * a + dc * h,
+            delta: self.delta + d_delta * h,
+            force: self.force + d_force * h,
+            s: s * du.exp(),
+            branch: Branch::Contact,
+            stable: true,
+        }
     }
 
     /// A quantity with the sign of dDelta/ds (Delta'(s) D / A, D = 2PA + Q > 0).
@@ -404,6 +431,7 @@ impl MdCurve {
         let l = self.lambda;
         let mut u = contact_guess(l, delta - self.junction().delta)?;
         let tol = 4.0 * f64::EPSILON * delta.abs().max(1.0);
+        let mut last_step: Option<f64> = None;
         for _ in 0..12 {
             let c = Contact::at(l, u.exp());
             let g = c.delta - delta;
@@ -415,6 +443,17 @@ impl MdCurve {
                 return None;
             }
             let step = (g / slope).clamp(-2.0, 2.0);
+            // Newton converges quadratically: after this step the error in u is about
+            // k step^2, k = |step| / last_step^2 measured on the last two steps. Once that
+            // is within the tolerance (in u), the solution is this point moved by -step
+            // to first order, whose own error is of the same (rounding) order.
+            if let Some(last) = last_step {
+                let k = step.abs() / (last * last);
+                if step.abs() <= 1e-7 && k * step * step <= tol / slope.abs() {
+                    return Some(c.extrapolated(l, -step));
+                }
+            }
+            last_step = Some(step);
             u -= step;
             if step.abs() <= 1e-15 * u.abs().max(1.0) {
                 let c = Contact::at(l, u.exp());
@@ -637,7 +676,9 @@ fn contact_guide() -> &'static [f64] {
     })
 }
 
-/// Bilinear estimate of ln s for lambda and Delta - Delta_j > 0, inside the guide.
+/// Estimate of ln s for lambda and Delta - Delta_j > 0, inside the guide: 4 x 4-point
+/// Lagrange interpolation (exact for bicubics; the stencil shifts inward at the edges of
+/// the grid), bilinear where a stencil holds a failed solve.
 fn contact_guess(lambda: f64, above_junction: f64) -> Option<f64> {
     if !(above_junction > 0.0) {
         return None;
@@ -648,9 +689,34 @@ fn contact_guess(lambda: f64, above_junction: f64) -> Option<f64> {
         return None;
     }
     let g = contact_guide();
+    let at = |i: usize, j: usize| g[i * CG_Y.2 + j];
+    // first stencil index and the weights of the four points at fractional position x
+    let stencil = |x: f64, n: usize| -> (usize, [f64; 4]) {
+        let i0 = (x as usize).saturating_sub(1).min(n - 4);
+        let f = x - (i0 + 1) as f64;
+        (
+            i0,
+            [
+                -f * (f - 1.0) * (f - 2.0) / 6.0,
+                (f + 1.0) * (f - 1.0) * (f - 2.0) / 2.0,
+                -(f + 1.0) * f * (f - 2.0) / 2.0,
+                (f + 1.0) * f * (f - 1.0) / 6.0,
+            ],
+        )
+    };
+    let (i0, wx) = stencil(x, CG_L.2);
+    let (j0, wy) = stencil(y, CG_Y.2);
+    let mut u = 0.0;
+    for (di, wi) in wx.iter().enumerate() {
+        for (dj, wj) in wy.iter().enumerate() {
+            u += wi * wj * at(i0 + di, j0 + dj);
+        }
+    }
+    if u.is_finite() {
+        return Some(u);
+    }
     let (i, j) = (x as usize, y as usize);
     let (fx, fy) = (x - i as f64, y - j as f64);
-    let at = |i: usize, j: usize| g[i * CG_Y.2 + j];
     let u = (1.0 - fx) * ((1.0 - fy) * at(i, j) + fy * at(i, j + 1))
         + fx * ((1.0 - fy) * at(i + 1, j) + fy * at(i + 1, j + 1));
     u.is_finite().then_some(u)
