@@ -60,7 +60,11 @@ fn main() -> Result<(), LawError> {
     let asperity = ru_asperity(1e-9);
     println!("delta_max [nm]  pull-off [uN]");
     for dmax in paper::FIG2_DELTA_MAX {
-        println!("{:>14.1} {:>14.3}", dmax * 1e9, asperity.pull_off(dmax)?.force * 1e6);
+        println!(
+            "{:>14.1} {:>14.3}",
+            dmax * 1e9,
+            asperity.pull_off(dmax)?.force * 1e6
+        );
     }
     Ok(())
 }

@@ -5,9 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 /// A speed/accuracy trade, named by its targets (see [`Targets`]).
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, clap::ValueEnum)]
 #[serde(rename_all = "snake_case")]
 pub enum Accuracy {
     /// d_e within 1e-9 sigma_s, pull-out within 1e-8 (relative).

@@ -84,8 +84,12 @@ pub enum Error {
 /// "law file FILE: why" (an I/O error names the file once).
 fn law_file_message(file: &str, e: &contact_law::LawError) -> String {
     match e {
-        contact_law::LawError::Io { source, .. } => format!("law file {file}: cannot read: {source}"),
-        contact_law::LawError::Format { path, message } => format!("law file {file}: {path}: {message}"),
+        contact_law::LawError::Io { source, .. } => {
+            format!("law file {file}: cannot read: {source}")
+        }
+        contact_law::LawError::Format { path, message } => {
+            format!("law file {file}: {path}: {message}")
+        }
         contact_law::LawError::Json(m) => {
             let m = m.strip_prefix(&format!("{file}: ")).unwrap_or(m);
             format!("law file {file}: not valid JSON: {m}")
@@ -109,8 +113,9 @@ fn law_is_input(e: &LawError) -> bool {
         LawError::Law(_) => [
             e.downcast_ref::<maugis_kim::MkError>()
                 .map(|m| matches!(m, maugis_kim::MkError::Core(c) if core_is_input(c))),
-            e.downcast_ref::<asperity_plastic::PlasticError>()
-                .map(|p| !matches!(p, asperity_plastic::PlasticError::Core(c) if !core_is_input(c))),
+            e.downcast_ref::<asperity_plastic::PlasticError>().map(
+                |p| !matches!(p, asperity_plastic::PlasticError::Core(c) if !core_is_input(c)),
+            ),
         ]
         .into_iter()
         .flatten()
@@ -141,7 +146,9 @@ impl Error {
         let input = match self {
             Error::InScene { source, .. } => return source.exit_code(),
             Error::LawFile { .. } => true,
-            Error::Scene(_) | Error::Usage { .. } | Error::Write { .. } | Error::Plot { .. } => true,
+            Error::Scene(_) | Error::Usage { .. } | Error::Write { .. } | Error::Plot { .. } => {
+                true
+            }
             Error::Core(e) => core_is_input(e),
             Error::MaugisKim(maugis_kim::MkError::Core(e)) => core_is_input(e),
             Error::MaugisKim(_) => false,

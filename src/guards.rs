@@ -21,7 +21,15 @@ pub const FIT_SHARE_LIMIT: f64 = 0.01;
 /// zero external load: the root of F(delta) on the retraction branch (0 for Hertz).
 pub fn zero_load_interference(elastic: &Asperity) -> Result<f64, Error> {
     let hist = AsperityHistory::VIRGIN;
-    let f = |d: f64| elastic.force(d, hist, Path::Retract { from: d.max(0.0) + 1.0 });
+    let f = |d: f64| {
+        elastic.force(
+            d,
+            hist,
+            Path::Retract {
+                from: d.max(0.0) + 1.0,
+            },
+        )
+    };
     if f(0.0)? >= 0.0 {
         return Ok(0.0);
     }
@@ -43,7 +51,11 @@ pub fn zero_load_interference(elastic: &Asperity) -> Result<f64, Error> {
 
 /// `adhesion_yields_asperity`: adhesion alone presses a virgin asperity beyond delta_CP
 /// (the paper's caveat for gold: plastic deformation is then not uncoupled from adhesion).
-pub fn adhesion_yields(contact: &Contact, plastic: &Asperity, elastic: &Asperity) -> Result<Option<Warning>, Error> {
+pub fn adhesion_yields(
+    contact: &Contact,
+    plastic: &Asperity,
+    elastic: &Asperity,
+) -> Result<Option<Warning>, Error> {
     let dcp = plastic.delta_cp();
     if !dcp.is_finite() {
         return Ok(None);
@@ -91,7 +103,9 @@ pub fn surface_beyond_fit(share: f64, at: f64) -> Option<Warning> {
 /// (more than the theoretical strength of the interface over the whole area).
 pub fn pressure_above_hardness(contact: &Contact, compressive: f64, pull_out: f64) -> Vec<Warning> {
     let mut out = Vec::new();
-    let s_y = contact.yield_stress.min(contact.counter_yield_stress.unwrap_or(f64::INFINITY));
+    let s_y = contact
+        .yield_stress
+        .min(contact.counter_yield_stress.unwrap_or(f64::INFINITY));
     let hardness = HARDNESS_FACTOR * s_y;
     if compressive > hardness {
         out.push(Warning {

@@ -6,8 +6,7 @@ use crate::error::Error;
 use crate::scene::{AdhesionKind, Contact, CounterKind, PlasticityKind, Surface};
 use asperity_plastic::{EffectiveRadiusFit, Elastic, ElastoPlasticAsperity, EtsionKadin};
 use contact_core::{
-    AdhesionLaw, Jumps, LawError, Material, MaterialProps, Pair, Path, PlasticState,
-    PlasticityLaw,
+    AdhesionLaw, Jumps, LawError, Material, MaterialProps, Pair, Path, PlasticState, PlasticityLaw,
 };
 use gw_surface::{GreenwoodWilliamson, Roughness};
 use maugis_kim::{Dmt, DugdaleParams, Hertz, Jkr, JkrParams, MaugisKim};
@@ -139,7 +138,10 @@ pub fn plasticity(c: &Contact, elastic: bool) -> Result<AnyPlasticity, Error> {
 
 /// The asperity of a scene; `elastic` forces the elastic comparison law.
 pub fn asperity(c: &Contact, elastic: bool) -> Result<Asperity, Error> {
-    Ok(ElastoPlasticAsperity::new(plasticity(c, elastic)?, adhesion(c)?))
+    Ok(ElastoPlasticAsperity::new(
+        plasticity(c, elastic)?,
+        adhesion(c)?,
+    ))
 }
 
 /// The rough surface of a scene at an accuracy mode (`abs_floor`: a pressure error in Pa

@@ -42,7 +42,11 @@ const COLORS: [RGBColor; 8] = [
 
 /// The parts of the polyline inside [x0, x1] x [y0, y1], each segment clipped at the
 /// border (Liang-Barsky).
-pub fn clip(points: &[(f64, f64)], (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+pub fn clip(
+    points: &[(f64, f64)],
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> Vec<Vec<(f64, f64)>> {
     let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
     let mut current: Vec<(f64, f64)> = Vec::new();
     let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
@@ -58,7 +62,12 @@ pub fn clip(points: &[(f64, f64)], (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let (mut t0, mut t1) = (0.0f64, 1.0f64);
         let mut inside = true;
-        for (p, q) in [(-dx, a.0 - x0), (dx, x1 - a.0), (-dy, a.1 - y0), (dy, y1 - a.1)] {
+        for (p, q) in [
+            (-dx, a.0 - x0),
+            (dx, x1 - a.0),
+            (-dy, a.1 - y0),
+            (dy, y1 - a.1),
+        ] {
             if p == 0.0 {
                 if q < 0.0 {
                     inside = false;
@@ -106,7 +115,9 @@ fn data_range(panel: &Panel, axis: usize) -> (f64, f64) {
         .flat_map(|s| s.points.iter())
         .map(|p| if axis == 0 { p.0 } else { p.1 })
         .filter(|v| v.is_finite());
-    let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    });
     if !(lo < hi) {
         let c = if lo.is_finite() { lo } else { 0.0 };
         return (c - 1.0, c + 1.0);
@@ -180,10 +191,18 @@ mod tests {
     #[test]
     fn clipping_keeps_the_part_inside_and_cuts_at_the_border() {
         // a line from (0, 0) to (4, 4) through a box [1, 3] x [0, 2]
-        let runs = clip(&[(0.0, 0.0), (2.0, 2.0), (4.0, 4.0)], (1.0, 3.0), (0.0, 2.0));
+        let runs = clip(
+            &[(0.0, 0.0), (2.0, 2.0), (4.0, 4.0)],
+            (1.0, 3.0),
+            (0.0, 2.0),
+        );
         assert_eq!(runs, vec![vec![(1.0, 1.0), (2.0, 2.0)]]);
         // a spike leaving and re-entering gives two runs, both ending on the border
-        let runs = clip(&[(0.0, 0.0), (1.0, 10.0), (2.0, 0.0)], (0.0, 2.0), (-1.0, 1.0));
+        let runs = clip(
+            &[(0.0, 0.0), (1.0, 10.0), (2.0, 0.0)],
+            (0.0, 2.0),
+            (-1.0, 1.0),
+        );
         assert_eq!(runs.len(), 2);
         assert_eq!(runs[0].last().unwrap().1, 1.0);
         assert_eq!(runs[1].first().unwrap().1, 1.0);

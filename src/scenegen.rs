@@ -92,9 +92,12 @@ pub fn switch_scene(rng: &mut Rng, domain: Domain) -> SwitchScene {
                 work_of_adhesion: rng.log_uniform(0.05, 2.5),
                 z0: rng.log_uniform(0.1e-9, 0.5e-9),
                 counter,
-                counter_youngs_modulus: (counter == CounterKind::Material).then(|| rng.log_uniform(50e9, 600e9)),
-                counter_poisson_ratio: (counter == CounterKind::Material).then(|| rng.uniform(0.2, 0.42)),
-                counter_yield_stress: (counter == CounterKind::Material).then(|| rng.log_uniform(0.2e9, 5e9)),
+                counter_youngs_modulus: (counter == CounterKind::Material)
+                    .then(|| rng.log_uniform(50e9, 600e9)),
+                counter_poisson_ratio: (counter == CounterKind::Material)
+                    .then(|| rng.uniform(0.2, 0.42)),
+                counter_yield_stress: (counter == CounterKind::Material)
+                    .then(|| rng.log_uniform(0.2e9, 5e9)),
                 adhesion_law: adhesion,
                 plasticity_law: plasticity,
                 yield_modulus: Some(yield_modulus),
@@ -114,7 +117,11 @@ pub fn switch_scene(rng: &mut Rng, domain: Domain) -> SwitchScene {
                 impact_energy: Some(rng.log_uniform(1e-3, 2.0)),
                 k_s: None,
                 voltage: None,
-                contact_area_fraction: if rng.unit() < 0.25 { rng.uniform(0.05, 1.0) } else { 1.0 },
+                contact_area_fraction: if rng.unit() < 0.25 {
+                    rng.uniform(0.05, 1.0)
+                } else {
+                    1.0
+                },
             };
             (contact, surface, switch)
         }
@@ -127,9 +134,12 @@ pub fn switch_scene(rng: &mut Rng, domain: Domain) -> SwitchScene {
                 work_of_adhesion: rng.log_uniform(1e-6, 100.0),
                 z0: rng.log_uniform(1e-11, 1e-7),
                 counter,
-                counter_youngs_modulus: (counter == CounterKind::Material).then(|| rng.log_uniform(1e6, 1e13)),
-                counter_poisson_ratio: (counter == CounterKind::Material).then(|| rng.uniform(0.0, 0.49)),
-                counter_yield_stress: (counter == CounterKind::Material).then(|| rng.log_uniform(1e3, 1e11)),
+                counter_youngs_modulus: (counter == CounterKind::Material)
+                    .then(|| rng.log_uniform(1e6, 1e13)),
+                counter_poisson_ratio: (counter == CounterKind::Material)
+                    .then(|| rng.uniform(0.0, 0.49)),
+                counter_yield_stress: (counter == CounterKind::Material)
+                    .then(|| rng.log_uniform(1e3, 1e11)),
                 adhesion_law: adhesion,
                 plasticity_law: plasticity,
                 yield_modulus: Some(yield_modulus),
@@ -149,7 +159,11 @@ pub fn switch_scene(rng: &mut Rng, domain: Domain) -> SwitchScene {
                 impact_energy: Some(rng.log_uniform(1e-9, 100.0)),
                 k_s: None,
                 voltage: None,
-                contact_area_fraction: if rng.unit() < 0.25 { rng.log_uniform(1e-3, 1.0) } else { 1.0 },
+                contact_area_fraction: if rng.unit() < 0.25 {
+                    rng.log_uniform(1e-3, 1.0)
+                } else {
+                    1.0
+                },
             };
             (contact, surface, switch)
         }

@@ -15,22 +15,39 @@ use stiction::commands::switch::{self, SwitchReport};
 use stiction::scene::{Loaded, Scene, SwitchScene};
 use stiction::scenegen::{self, Domain, Rng};
 
-fn run(s: &SwitchScene, accuracy: Accuracy, points: usize) -> Result<SwitchReport, stiction::Error> {
+fn run(
+    s: &SwitchScene,
+    accuracy: Accuracy,
+    points: usize,
+) -> Result<SwitchReport, stiction::Error> {
     let mut s = s.clone();
     s.accuracy = accuracy;
     s.points = points;
-    switch::run(&Loaded { file: "generated".into(), scene: s, is_paper: false }, false)
+    switch::run(
+        &Loaded {
+            file: "generated".into(),
+            scene: s,
+            is_paper: false,
+        },
+        false,
+    )
 }
 
 /// Worst (d_e error in sigma_s, pull-out error relative with the 1e-9 K_s d0 floor).
 fn errors(a: &SwitchReport, b: &SwitchReport, sigma: f64) -> (f64, f64) {
     let floor = 1e-9 * a.restoring_pressure / a.contact_area_fraction;
-    a.cycles.iter().zip(&b.cycles).fold((0.0f64, 0.0f64), |(de, po), (x, y)| {
-        (
-            de.max((x.d_e - y.d_e).abs() / sigma),
-            po.max((x.pull_out_pressure - y.pull_out_pressure).abs() / x.pull_out_pressure.abs().max(floor)),
-        )
-    })
+    a.cycles
+        .iter()
+        .zip(&b.cycles)
+        .fold((0.0f64, 0.0f64), |(de, po), (x, y)| {
+            (
+                de.max((x.d_e - y.d_e).abs() / sigma),
+                po.max(
+                    (x.pull_out_pressure - y.pull_out_pressure).abs()
+                        / x.pull_out_pressure.abs().max(floor),
+                ),
+            )
+        })
 }
 
 fn scenes(domain: Domain, seed: u64, n: usize) -> Vec<SwitchScene> {
@@ -52,19 +69,27 @@ fn every_mode_meets_its_targets_on_random_mems_scenes() {
     let mut worst = [(0.0f64, 0.0f64); 3];
     for (i, s) in scenes(Domain::Mems, 2026, 16).into_iter().enumerate() {
         let sigma = s.surface.sigma_s;
-        let accurate = run(&s, Accuracy::Accurate, 0).unwrap_or_else(|e| panic!("scene {i}: a plausible MEMS scene failed: {e}\n{s:#?}"));
+        let accurate = run(&s, Accuracy::Accurate, 0)
+            .unwrap_or_else(|e| panic!("scene {i}: a plausible MEMS scene failed: {e}\n{s:#?}"));
         for (k, mode) in [Accuracy::Balanced, Accuracy::Fast].into_iter().enumerate() {
             let r = run(&s, mode, 0).unwrap_or_else(|e| panic!("scene {i} {mode}: {e}"));
             let t = mode.targets();
             let (de, po) = errors(&accurate, &r, sigma);
             worst[k + 1] = (worst[k + 1].0.max(de), worst[k + 1].1.max(po));
             if de > t.d_e_tolerance_sigma || po > t.pull_out_tolerance {
-                failures.push(format!("scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}"));
+                failures.push(format!(
+                    "scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}"
+                ));
             }
             // the verdict may only differ where the ratio is within the mode's tolerance of 1
-            let closeness = (accurate.pull_out_ratio - 1.0).abs() / accurate.pull_out_ratio.max(f64::MIN_POSITIVE);
+            let closeness = (accurate.pull_out_ratio - 1.0).abs()
+                / accurate.pull_out_ratio.max(f64::MIN_POSITIVE);
             if closeness > 2.0 * t.pull_out_tolerance {
-                assert_eq!(r.stiction, accurate.stiction, "scene {i} {mode}: verdict at ratio {}", accurate.pull_out_ratio);
+                assert_eq!(
+                    r.stiction, accurate.stiction,
+                    "scene {i} {mode}: verdict at ratio {}",
+                    accurate.pull_out_ratio
+                );
             }
         }
         // no spurious jump of d_e between cycles
@@ -79,11 +104,16 @@ fn every_mode_meets_its_targets_on_random_mems_scenes() {
             worst[0] = (worst[0].0.max(de), worst[0].1.max(po));
             let t = Accuracy::Accurate.targets();
             if de > t.d_e_tolerance_sigma || po > t.pull_out_tolerance {
-                failures.push(format!("scene {i} accurate: d_e {de:e} sigma, pull-out {po:e}"));
+                failures.push(format!(
+                    "scene {i} accurate: d_e {de:e} sigma, pull-out {po:e}"
+                ));
             }
         }
     }
-    eprintln!("worst (d_e, pull-out): accurate {:?} balanced {:?} fast {:?}", worst[0], worst[1], worst[2]);
+    eprintln!(
+        "worst (d_e, pull-out): accurate {:?} balanced {:?} fast {:?}",
+        worst[0], worst[1], worst[2]
+    );
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
@@ -102,11 +132,15 @@ fn modes_meet_their_targets_on_the_wide_ranges_where_the_model_has_an_answer() {
             assert!(rise < 1e-3, "wide scene {i}: d_e rose by {rise} sigma_s");
         }
         for mode in [Accuracy::Balanced, Accuracy::Fast] {
-            let r = run(&s, mode, 0).unwrap_or_else(|e| panic!("wide scene {i} {mode} failed where accurate did not: {e}"));
+            let r = run(&s, mode, 0).unwrap_or_else(|e| {
+                panic!("wide scene {i} {mode} failed where accurate did not: {e}")
+            });
             let t = mode.targets();
             let (de, po) = errors(&accurate, &r, sigma);
             if de > t.d_e_tolerance_sigma || po > t.pull_out_tolerance {
-                failures.push(format!("wide scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}"));
+                failures.push(format!(
+                    "wide scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}"
+                ));
             }
         }
     }
@@ -120,7 +154,11 @@ fn the_pull_out_does_not_depend_on_the_curves_written() {
         let a = run(&s, Accuracy::Fast, 0).unwrap();
         let b = run(&s, Accuracy::Fast, 300).unwrap();
         for (x, y) in a.cycles.iter().zip(&b.cycles) {
-            assert_eq!(x.pull_out_pressure, y.pull_out_pressure, "scene {i} cycle {}", x.cycle);
+            assert_eq!(
+                x.pull_out_pressure, y.pull_out_pressure,
+                "scene {i} cycle {}",
+                x.cycle
+            );
             assert_eq!(x.d_e, y.d_e);
             // and no written sample lies below the pull-out found
             let lowest = y.unloading.iter().map(|p| p.pressure).fold(0.0, f64::min);
@@ -136,16 +174,30 @@ fn a_user_law_without_declared_kinks_meets_the_targets() {
     use stiction::contact_core::{paper, SurfaceLaw};
     use stiction::gw_surface::{GreenwoodWilliamson, Roughness};
     use stiction::switch_1d::{run_cycles, CycleOptions, Impact, ImpactFilm};
-    let rough = Roughness { sigma_s: paper::SIGMA_S, asperity_density: paper::ASPERITY_DENSITY };
+    let rough = Roughness {
+        sigma_s: paper::SIGMA_S,
+        asperity_density: paper::ASPERITY_DENSITY,
+    };
     let impact = Impact {
         energy: 0.5,
-        film: ImpactFilm { thickness: paper::FILM_THICKNESS, youngs_modulus: 410e9 },
+        film: ImpactFilm {
+            thickness: paper::FILM_THICKNESS,
+            youngs_modulus: 410e9,
+        },
         contact_area_fraction: 1.0,
         restoring_pressure: 16_880.0,
     };
     let solve = |mode: Accuracy| {
-        let gw = GreenwoodWilliamson::new(custom_law::ru_asperity(0.5e-9), rough, mode.quadrature(0.0)).unwrap();
-        let opts = CycleOptions { cycles: 2, unloading_points: 0, loading_points: 0, precision: mode.precision(16_880.0), ..Default::default() };
+        let gw =
+            GreenwoodWilliamson::new(custom_law::ru_asperity(0.5e-9), rough, mode.quadrature(0.0))
+                .unwrap();
+        let opts = CycleOptions {
+            cycles: 2,
+            unloading_points: 0,
+            loading_points: 0,
+            precision: mode.precision(16_880.0),
+            ..Default::default()
+        };
         run_cycles(&gw, gw.virgin(), impact, opts, &mut |_| {}).unwrap()
     };
     let accurate = solve(Accuracy::Accurate);
@@ -154,8 +206,12 @@ fn a_user_law_without_declared_kinks_meets_the_targets() {
         let t = mode.targets();
         for (a, b) in accurate.cycles.iter().zip(&r.cycles) {
             let de = (a.d_e() - b.d_e()).abs() / paper::SIGMA_S;
-            let po = (a.unloading.pull_out_pressure - b.unloading.pull_out_pressure).abs() / a.unloading.pull_out_pressure;
-            assert!(de <= t.d_e_tolerance_sigma && po <= t.pull_out_tolerance, "{mode}: d_e {de:e}, pull-out {po:e}");
+            let po = (a.unloading.pull_out_pressure - b.unloading.pull_out_pressure).abs()
+                / a.unloading.pull_out_pressure;
+            assert!(
+                de <= t.d_e_tolerance_sigma && po <= t.pull_out_tolerance,
+                "{mode}: d_e {de:e}, pull-out {po:e}"
+            );
         }
     }
 }

@@ -46,11 +46,24 @@ fn md_single_point_follows_the_path_rule() {
 
 #[test]
 fn asperity_json_runs_from_out_of_contact_to_delta_max_and_back() {
-    let v = json(&stiction(&["asperity", "--format", "json", "--delta-max", "17e-9"]));
+    let v = json(&stiction(&[
+        "asperity",
+        "--format",
+        "json",
+        "--delta-max",
+        "17e-9",
+    ]));
     // eq 1 as printed (the paper's scene): delta_CP = 4e-6 (pi 1.6149608 3.42e9/(2 410e9))^2
     assert!((v["delta_cp"].as_f64().unwrap() - 1.791052120036274e-9).abs() < 1e-20);
     let case = &v["cases"][0];
-    for k in ["delta_max", "delta_res", "r_res", "pull_off_force", "loading", "unloading"] {
+    for k in [
+        "delta_max",
+        "delta_res",
+        "r_res",
+        "pull_off_force",
+        "loading",
+        "unloading",
+    ] {
         assert!(case.get(k).is_some(), "missing {k}");
     }
     for k in ["accuracy", "error_estimate", "scene", "warnings"] {
@@ -59,11 +72,22 @@ fn asperity_json_runs_from_out_of_contact_to_delta_max_and_back() {
     assert_eq!(v["scene"]["contact"]["yield_modulus"], "as_printed");
     let load = case["loading"].as_array().unwrap();
     let unload = case["unloading"].as_array().unwrap();
-    assert_eq!(load[0]["force"].as_f64().unwrap(), 0.0, "loading starts out of contact");
+    assert_eq!(
+        load[0]["force"].as_f64().unwrap(),
+        0.0,
+        "loading starts out of contact"
+    );
     assert!((load.last().unwrap()["delta"].as_f64().unwrap() - 17e-9).abs() < 1e-22);
     assert!((unload[0]["delta"].as_f64().unwrap() - 17e-9).abs() < 1e-22);
-    assert_eq!(unload.last().unwrap()["force"].as_f64().unwrap(), 0.0, "unloading ends jumped out");
-    let min = unload.iter().map(|p| p["force"].as_f64().unwrap()).fold(0.0, f64::min);
+    assert_eq!(
+        unload.last().unwrap()["force"].as_f64().unwrap(),
+        0.0,
+        "unloading ends jumped out"
+    );
+    let min = unload
+        .iter()
+        .map(|p| p["force"].as_f64().unwrap())
+        .fold(0.0, f64::min);
     let pull = case["pull_off_force"].as_f64().unwrap();
     assert!(pull <= min && pull > 1.01 * min, "{pull} vs sampled {min}");
     assert!(!has_null(&v));
@@ -74,30 +98,66 @@ fn asperity_json_runs_from_out_of_contact_to_delta_max_and_back() {
 fn scene_print_round_trips_through_every_subcommand() {
     let small: [(&str, &[(&str, &str)]); 3] = [
         ("asperity", &[("points", "points = 12")]),
-        ("surface", &[("points", "points = 6"), ("accuracy", "accuracy = \"fast\"")]),
-        ("switch", &[("points", "points = 0"), ("accuracy", "accuracy = \"fast\""), ("cycles", "cycles = 1"), ("elastic_comparison", "elastic_comparison = false")]),
+        (
+            "surface",
+            &[
+                ("points", "points = 6"),
+                ("accuracy", "accuracy = \"fast\""),
+            ],
+        ),
+        (
+            "switch",
+            &[
+                ("points", "points = 0"),
+                ("accuracy", "accuracy = \"fast\""),
+                ("cycles", "cycles = 1"),
+                ("elastic_comparison", "elastic_comparison = false"),
+            ],
+        ),
     ];
     for (kind, edits) in small {
         let text = scene_with(kind, edits);
         assert!(text.contains("[contact]"));
         let f = temp_file(&format!("print-{kind}"), text.as_bytes());
-        let v = json(&stiction(&[kind, "--scene", f.to_str().unwrap(), "--format", "json"]));
-        assert_eq!(v["scene"]["contact"]["yield_modulus"], "as_printed", "{kind}");
+        let v = json(&stiction(&[
+            kind,
+            "--scene",
+            f.to_str().unwrap(),
+            "--format",
+            "json",
+        ]));
+        assert_eq!(
+            v["scene"]["contact"]["yield_modulus"], "as_printed",
+            "{kind}"
+        );
         assert!(!has_null(&v), "{kind}");
     }
 }
 
 /// A cheap switch scene in a file of its own per `tag` (tests run in parallel).
 fn small_switch_scene(tag: &str, extra: &[(&str, &str)]) -> std::path::PathBuf {
-    let mut edits = vec![("points", "points = 16"), ("accuracy", "accuracy = \"fast\""), ("cycles", "cycles = 3")];
+    let mut edits = vec![
+        ("points", "points = 16"),
+        ("accuracy", "accuracy = \"fast\""),
+        ("cycles", "cycles = 3"),
+    ];
     edits.extend_from_slice(extra);
-    temp_file(&format!("switch-small-{tag}"), scene_with("switch", &edits).as_bytes())
+    temp_file(
+        &format!("switch-small-{tag}"),
+        scene_with("switch", &edits).as_bytes(),
+    )
 }
 
 #[test]
 fn switch_json_has_the_contract_keys_and_the_verdict_is_the_ratio() {
     let f = small_switch_scene("json", &[]);
-    let v = json(&stiction(&["switch", "--scene", f.to_str().unwrap(), "--format", "json"]));
+    let v = json(&stiction(&[
+        "switch",
+        "--scene",
+        f.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
     for k in [
         "k_s",
         "v_pull_in",
@@ -124,7 +184,14 @@ fn switch_json_has_the_contract_keys_and_the_verdict_is_the_ratio() {
     let cycles = v["cycles"].as_array().unwrap();
     assert_eq!(cycles.len(), 3);
     for c in cycles {
-        for k in ["cycle", "d_e", "pull_out_pressure", "unloading", "sticks", "pull_out_ratio"] {
+        for k in [
+            "cycle",
+            "d_e",
+            "pull_out_pressure",
+            "unloading",
+            "sticks",
+            "pull_out_ratio",
+        ] {
             assert!(c.get(k).is_some(), "cycle lacks {k}");
         }
         assert!(c["pull_out_pressure"].as_f64().unwrap() >= 0.0);
@@ -133,7 +200,10 @@ fn switch_json_has_the_contract_keys_and_the_verdict_is_the_ratio() {
         assert!(v["elastic"].get(k).is_some());
     }
     let restoring = v["restoring_pressure"].as_f64().unwrap();
-    let worst = cycles.iter().map(|c| c["pull_out_pressure"].as_f64().unwrap()).fold(0.0, f64::max);
+    let worst = cycles
+        .iter()
+        .map(|c| c["pull_out_pressure"].as_f64().unwrap())
+        .fold(0.0, f64::max);
     let ratio = v["pull_out_ratio"].as_f64().unwrap();
     assert!((ratio - worst / restoring).abs() <= 1e-12 * ratio);
     assert_eq!(v["stiction"].as_bool().unwrap(), ratio > 1.0);
@@ -148,8 +218,18 @@ fn switch_json_has_the_contract_keys_and_the_verdict_is_the_ratio() {
 fn switch_writes_its_files_together() {
     let f = small_switch_scene("files", &[]);
     let dir = temp_dir("switch-files").join("out");
-    let out = stiction(&["switch", "--scene", f.to_str().unwrap(), "--out", dir.to_str().unwrap()]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = stiction(&[
+        "switch",
+        "--scene",
+        f.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     for name in ["switch.json", "cycles.csv", "curves.csv", "switch.svg"] {
         let meta = std::fs::metadata(dir.join(name)).unwrap();
         assert!(meta.len() > 100, "{name} too small");
@@ -163,10 +243,32 @@ fn switch_writes_its_files_together() {
 
 #[test]
 fn surface_json_has_the_contract_keys() {
-    let text = scene_with("surface", &[("points", "points = 12"), ("accuracy", "accuracy = \"fast\"")]);
+    let text = scene_with(
+        "surface",
+        &[
+            ("points", "points = 12"),
+            ("accuracy", "accuracy = \"fast\""),
+        ],
+    );
     let f = temp_file("surface-small", text.as_bytes());
-    let v = json(&stiction(&["surface", "--scene", f.to_str().unwrap(), "--format", "json", "--unload-from", "8e-9"]));
-    for k in ["loading", "unloading", "reloading", "pull_out_pressure", "accuracy", "error_estimate", "scene"] {
+    let v = json(&stiction(&[
+        "surface",
+        "--scene",
+        f.to_str().unwrap(),
+        "--format",
+        "json",
+        "--unload-from",
+        "8e-9",
+    ]));
+    for k in [
+        "loading",
+        "unloading",
+        "reloading",
+        "pull_out_pressure",
+        "accuracy",
+        "error_estimate",
+        "scene",
+    ] {
         assert!(v.get(k).is_some(), "missing {k}");
     }
     assert!(v["pull_out_pressure"].as_f64().unwrap() > 0.0);
@@ -174,7 +276,15 @@ fn surface_json_has_the_contract_keys() {
     assert!(v["loading"][0]["d"].as_f64().unwrap() == 8e-9);
     assert!(!has_null(&v));
     // without unloading the pull-out is omitted, not null
-    let v = json(&stiction(&["surface", "--scene", f.to_str().unwrap(), "--format", "json", "--unload-from", "8e-9"]));
+    let v = json(&stiction(&[
+        "surface",
+        "--scene",
+        f.to_str().unwrap(),
+        "--format",
+        "json",
+        "--unload-from",
+        "8e-9",
+    ]));
     assert!(v.get("pull_out_pressure").is_some());
 }
 
@@ -194,12 +304,24 @@ fn help_lists_the_built_subcommands() {
         .filter_map(|l| l.split_whitespace().next().map(str::to_string))
         .filter(|w| w != "help")
         .collect();
-    let mut expected = vec!["md", "asperity", "surface", "switch", "calibrate", "law", "scene", "design"];
+    let mut expected = vec![
+        "md",
+        "asperity",
+        "surface",
+        "switch",
+        "calibrate",
+        "law",
+        "scene",
+        "design",
+    ];
     expected.sort();
     let mut got = listed.clone();
     got.sort();
     assert_eq!(got, expected, "--help lists {listed:?}");
     for name in &listed {
-        assert!(stiction(&[name, "--help"]).status.success(), "{name} --help fails");
+        assert!(
+            stiction(&[name, "--help"]).status.success(),
+            "{name} --help fails"
+        );
     }
 }

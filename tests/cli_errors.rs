@@ -42,7 +42,13 @@ struct Case {
     code: i32,
 }
 
-fn scene_case(name: &'static str, kind: &'static str, key: &str, line: &str, fragments: &[&'static str]) -> Case {
+fn scene_case(
+    name: &'static str,
+    kind: &'static str,
+    key: &str,
+    line: &str,
+    fragments: &[&'static str],
+) -> Case {
     Case {
         name,
         kind,
@@ -66,55 +72,333 @@ fn arg_case(name: &'static str, args: &[&'static str], fragments: &[&'static str
 
 fn cases() -> Vec<Case> {
     vec![
-        scene_case("negative modulus", "asperity", "youngs_modulus", "youngs_modulus = -410e9", &["contact.youngs_modulus", "-4.1e11", "[1e6, 1e13]"]),
-        scene_case("huge modulus in scientific notation", "switch", "youngs_modulus", "youngs_modulus = 1e308", &["contact.youngs_modulus", "= 1e308"]),
-        scene_case("nu = 0.5", "asperity", "poisson_ratio", "poisson_ratio = 0.5", &["contact.poisson_ratio", "5e-1", "[0e0, 5e-1)"]),
-        scene_case("nu negative", "asperity", "poisson_ratio", "poisson_ratio = -0.1", &["contact.poisson_ratio", "-1e-1"]),
-        scene_case("nu wrong type", "asperity", "poisson_ratio", "poisson_ratio = \"abc\"", &["invalid type: string \"abc\", expected f64"]),
-        scene_case("NaN yield stress", "asperity", "yield_stress", "yield_stress = nan", &["contact.yield_stress", "NaN"]),
-        scene_case("yield stress below its lower bound", "switch", "yield_stress", "yield_stress = 999.999999", &["contact.yield_stress", "9.99999999e2", "[1e3, inf]"]),
-        scene_case("tiny yield stress", "switch", "yield_stress", "yield_stress = 1e-300", &["contact.yield_stress", "1e-300"]),
-        scene_case("infinite yield with Etsion-Kadin", "asperity", "yield_stress", "yield_stress = inf", &["use \"elastic\" for no yield"]),
-        scene_case("misspelled key", "asperity", "radius", "radus = 4e-6", &["unknown field `radus`"]),
-        scene_case("missing key", "asperity", "radius", "", &["missing field `radius`"]),
-        scene_case("missing eq-1 reading explains both", "switch", "yield_modulus", "", &["contact.yield_modulus", "as_printed", "composite", "100x"]),
-        scene_case("unknown top-level key", "switch", "", "colour = \"red\"", &["unknown field `colour`"]),
-        scene_case("zero work of adhesion", "asperity", "work_of_adhesion", "work_of_adhesion = 0.0", &["contact.work_of_adhesion", "= 0e0"]),
-        scene_case("work of adhesion below 1e-6", "switch", "work_of_adhesion", "work_of_adhesion = 9.99999999e-07", &["contact.work_of_adhesion", "9.99999999e-7", "[1e-6, 1e2]"]),
-        scene_case("tiny work of adhesion", "switch", "work_of_adhesion", "work_of_adhesion = 1e-300", &["contact.work_of_adhesion", "1e-300"]),
-        scene_case("negative z0", "asperity", "z0", "z0 = -1e-10", &["contact.z0", "-1e-10"]),
-        scene_case("unknown adhesion law", "asperity", "adhesion_law", "adhesion_law = \"lennard_jones\"", &["unknown variant `lennard_jones`"]),
-        scene_case("bad eq-13 constant", "asperity", "c2", "c2 = [10.0, -1.0, 5.0]", &["contact.effective_radius.c2[1]", "-1e0"]),
-        scene_case("empty delta_max", "asperity", "delta_max", "delta_max = []", &["delta_max` = []"]),
-        scene_case("one point", "asperity", "points", "points = 1", &["`points` = 1"]),
-        scene_case("zero roughness", "surface", "sigma_s", "sigma_s = 0.0", &["surface.sigma_s", "= 0e0"]),
-        scene_case("huge density", "surface", "asperity_density", "asperity_density = 1e30", &["surface.asperity_density", "1e30"]),
-        scene_case("unknown accuracy", "surface", "accuracy", "accuracy = \"perfect\"", &["unknown variant `perfect`"]),
-        scene_case("negative impact energy", "switch", "impact_energy", "impact_energy = -0.5", &["switch.impact_energy", "-5e-1"]),
-        scene_case("impact energy and k_s", "switch", "impact_energy", "impact_energy = 0.5\nk_s = 1e9", &["not both"]),
-        scene_case("neither impact energy nor k_s", "switch", "impact_energy", "", &["switch.impact_energy", "give impact_energy"]),
-        scene_case("voltage with impact energy", "switch", "impact_energy", "impact_energy = 0.5\nvoltage = 40.0", &["switch.voltage", "k_s"]),
-        scene_case("derived impact energy out of range", "switch", "impact_energy", "k_s = 1e9\nvoltage = 3e4", &["switch.impact_energy", "derived from k_s", "[1e-9, 1e2]"]),
-        scene_case("permittivity below one", "switch", "epsilon_r", "epsilon_r = 0.5", &["switch.epsilon_r", "5e-1"]),
-        scene_case("contact fraction above one", "switch", "contact_area_fraction", "contact_area_fraction = 1.5", &["switch.contact_area_fraction", "1.5e0", "(0e0, 1e0]"]),
-        scene_case("zero cycles", "switch", "cycles", "cycles = 0", &["`cycles` = 0"]),
-        scene_case("counter material without modulus", "asperity", "counter", "counter = \"material\"", &["counter_youngs_modulus` = missing"]),
-        scene_case("counter key without counter material", "asperity", "counter", "counter = \"rigid\"\ncounter_yield_stress = 1e9", &["contact.counter_yield_stress", "absent unless"]),
-        scene_case("string for a number", "switch", "d0", "d0 = \"2 um\"", &["invalid type: string \"2 um\""]),
-        Case { name: "empty file", kind: "asperity", scene: Some(vec![]), args: vec![], fragments: vec!["empty scene file"], code: 2 },
-        Case { name: "garbage bytes", kind: "asperity", scene: Some(vec![0xff, 0xfe, 0x00, 0x80, 0x13]), args: vec![], fragments: vec!["not UTF-8"], code: 2 },
-        Case { name: "broken TOML", kind: "surface", scene: Some(b"[contact\nyoungs_modulus = ".to_vec()), args: vec![], fragments: vec!["TOML parse error"], code: 2 },
-        Case { name: "scene over 1 MiB", kind: "switch", scene: Some(vec![b'#'; (1 << 20) + 10]), args: vec![], fragments: vec!["larger than 1048576 bytes"], code: 2 },
-        arg_case("negative lambda", &["md", "--lambda", "-1"], &["invalid --lambda", "-1e0"]),
-        arg_case("NaN lambda", &["md", "--lambda", "NaN"], &["invalid --lambda", "NaN"]),
-        arg_case("retract without from", &["md", "--lambda", "1", "--delta", "0", "--path", "retract"], &["--path retract", "needs --from"]),
-        arg_case("negative points names the option", &["md", "--lambda", "1", "--points", "-5"], &["--points", "-5"]),
-        arg_case("negative cycles names the option", &["switch", "--cycles", "-1"], &["--cycles", "-1"]),
-        arg_case("too many cycles", &["switch", "--cycles", "5000"], &["`cycles` = 5000"]),
-        arg_case("negative delta_max flag", &["asperity", "--delta-max", "-1e-9"], &["delta_max[0]", "-1e-9"]),
-        arg_case("missing scene file", &["asperity", "--scene", "/nonexistent/scene.toml"], &["cannot read"]),
-        arg_case("unknown subcommand", &["frobnicate"], &["unrecognized subcommand"]),
-        arg_case("not a number", &["md", "--lambda", "one"], &["invalid value 'one'", "--lambda"]),
+        scene_case(
+            "negative modulus",
+            "asperity",
+            "youngs_modulus",
+            "youngs_modulus = -410e9",
+            &["contact.youngs_modulus", "-4.1e11", "[1e6, 1e13]"],
+        ),
+        scene_case(
+            "huge modulus in scientific notation",
+            "switch",
+            "youngs_modulus",
+            "youngs_modulus = 1e308",
+            &["contact.youngs_modulus", "= 1e308"],
+        ),
+        scene_case(
+            "nu = 0.5",
+            "asperity",
+            "poisson_ratio",
+            "poisson_ratio = 0.5",
+            &["contact.poisson_ratio", "5e-1", "[0e0, 5e-1)"],
+        ),
+        scene_case(
+            "nu negative",
+            "asperity",
+            "poisson_ratio",
+            "poisson_ratio = -0.1",
+            &["contact.poisson_ratio", "-1e-1"],
+        ),
+        scene_case(
+            "nu wrong type",
+            "asperity",
+            "poisson_ratio",
+            "poisson_ratio = \"abc\"",
+            &["invalid type: string \"abc\", expected f64"],
+        ),
+        scene_case(
+            "NaN yield stress",
+            "asperity",
+            "yield_stress",
+            "yield_stress = nan",
+            &["contact.yield_stress", "NaN"],
+        ),
+        scene_case(
+            "yield stress below its lower bound",
+            "switch",
+            "yield_stress",
+            "yield_stress = 999.999999",
+            &["contact.yield_stress", "9.99999999e2", "[1e3, inf]"],
+        ),
+        scene_case(
+            "tiny yield stress",
+            "switch",
+            "yield_stress",
+            "yield_stress = 1e-300",
+            &["contact.yield_stress", "1e-300"],
+        ),
+        scene_case(
+            "infinite yield with Etsion-Kadin",
+            "asperity",
+            "yield_stress",
+            "yield_stress = inf",
+            &["use \"elastic\" for no yield"],
+        ),
+        scene_case(
+            "misspelled key",
+            "asperity",
+            "radius",
+            "radus = 4e-6",
+            &["unknown field `radus`"],
+        ),
+        scene_case(
+            "missing key",
+            "asperity",
+            "radius",
+            "",
+            &["missing field `radius`"],
+        ),
+        scene_case(
+            "missing eq-1 reading explains both",
+            "switch",
+            "yield_modulus",
+            "",
+            &["contact.yield_modulus", "as_printed", "composite", "100x"],
+        ),
+        scene_case(
+            "unknown top-level key",
+            "switch",
+            "",
+            "colour = \"red\"",
+            &["unknown field `colour`"],
+        ),
+        scene_case(
+            "zero work of adhesion",
+            "asperity",
+            "work_of_adhesion",
+            "work_of_adhesion = 0.0",
+            &["contact.work_of_adhesion", "= 0e0"],
+        ),
+        scene_case(
+            "work of adhesion below 1e-6",
+            "switch",
+            "work_of_adhesion",
+            "work_of_adhesion = 9.99999999e-07",
+            &["contact.work_of_adhesion", "9.99999999e-7", "[1e-6, 1e2]"],
+        ),
+        scene_case(
+            "tiny work of adhesion",
+            "switch",
+            "work_of_adhesion",
+            "work_of_adhesion = 1e-300",
+            &["contact.work_of_adhesion", "1e-300"],
+        ),
+        scene_case(
+            "negative z0",
+            "asperity",
+            "z0",
+            "z0 = -1e-10",
+            &["contact.z0", "-1e-10"],
+        ),
+        scene_case(
+            "unknown adhesion law",
+            "asperity",
+            "adhesion_law",
+            "adhesion_law = \"lennard_jones\"",
+            &["unknown variant `lennard_jones`"],
+        ),
+        scene_case(
+            "bad eq-13 constant",
+            "asperity",
+            "c2",
+            "c2 = [10.0, -1.0, 5.0]",
+            &["contact.effective_radius.c2[1]", "-1e0"],
+        ),
+        scene_case(
+            "empty delta_max",
+            "asperity",
+            "delta_max",
+            "delta_max = []",
+            &["delta_max` = []"],
+        ),
+        scene_case(
+            "one point",
+            "asperity",
+            "points",
+            "points = 1",
+            &["`points` = 1"],
+        ),
+        scene_case(
+            "zero roughness",
+            "surface",
+            "sigma_s",
+            "sigma_s = 0.0",
+            &["surface.sigma_s", "= 0e0"],
+        ),
+        scene_case(
+            "huge density",
+            "surface",
+            "asperity_density",
+            "asperity_density = 1e30",
+            &["surface.asperity_density", "1e30"],
+        ),
+        scene_case(
+            "unknown accuracy",
+            "surface",
+            "accuracy",
+            "accuracy = \"perfect\"",
+            &["unknown variant `perfect`"],
+        ),
+        scene_case(
+            "negative impact energy",
+            "switch",
+            "impact_energy",
+            "impact_energy = -0.5",
+            &["switch.impact_energy", "-5e-1"],
+        ),
+        scene_case(
+            "impact energy and k_s",
+            "switch",
+            "impact_energy",
+            "impact_energy = 0.5\nk_s = 1e9",
+            &["not both"],
+        ),
+        scene_case(
+            "neither impact energy nor k_s",
+            "switch",
+            "impact_energy",
+            "",
+            &["switch.impact_energy", "give impact_energy"],
+        ),
+        scene_case(
+            "voltage with impact energy",
+            "switch",
+            "impact_energy",
+            "impact_energy = 0.5\nvoltage = 40.0",
+            &["switch.voltage", "k_s"],
+        ),
+        scene_case(
+            "derived impact energy out of range",
+            "switch",
+            "impact_energy",
+            "k_s = 1e9\nvoltage = 3e4",
+            &["switch.impact_energy", "derived from k_s", "[1e-9, 1e2]"],
+        ),
+        scene_case(
+            "permittivity below one",
+            "switch",
+            "epsilon_r",
+            "epsilon_r = 0.5",
+            &["switch.epsilon_r", "5e-1"],
+        ),
+        scene_case(
+            "contact fraction above one",
+            "switch",
+            "contact_area_fraction",
+            "contact_area_fraction = 1.5",
+            &["switch.contact_area_fraction", "1.5e0", "(0e0, 1e0]"],
+        ),
+        scene_case(
+            "zero cycles",
+            "switch",
+            "cycles",
+            "cycles = 0",
+            &["`cycles` = 0"],
+        ),
+        scene_case(
+            "counter material without modulus",
+            "asperity",
+            "counter",
+            "counter = \"material\"",
+            &["counter_youngs_modulus` = missing"],
+        ),
+        scene_case(
+            "counter key without counter material",
+            "asperity",
+            "counter",
+            "counter = \"rigid\"\ncounter_yield_stress = 1e9",
+            &["contact.counter_yield_stress", "absent unless"],
+        ),
+        scene_case(
+            "string for a number",
+            "switch",
+            "d0",
+            "d0 = \"2 um\"",
+            &["invalid type: string \"2 um\""],
+        ),
+        Case {
+            name: "empty file",
+            kind: "asperity",
+            scene: Some(vec![]),
+            args: vec![],
+            fragments: vec!["empty scene file"],
+            code: 2,
+        },
+        Case {
+            name: "garbage bytes",
+            kind: "asperity",
+            scene: Some(vec![0xff, 0xfe, 0x00, 0x80, 0x13]),
+            args: vec![],
+            fragments: vec!["not UTF-8"],
+            code: 2,
+        },
+        Case {
+            name: "broken TOML",
+            kind: "surface",
+            scene: Some(b"[contact\nyoungs_modulus = ".to_vec()),
+            args: vec![],
+            fragments: vec!["TOML parse error"],
+            code: 2,
+        },
+        Case {
+            name: "scene over 1 MiB",
+            kind: "switch",
+            scene: Some(vec![b'#'; (1 << 20) + 10]),
+            args: vec![],
+            fragments: vec!["larger than 1048576 bytes"],
+            code: 2,
+        },
+        arg_case(
+            "negative lambda",
+            &["md", "--lambda", "-1"],
+            &["invalid --lambda", "-1e0"],
+        ),
+        arg_case(
+            "NaN lambda",
+            &["md", "--lambda", "NaN"],
+            &["invalid --lambda", "NaN"],
+        ),
+        arg_case(
+            "retract without from",
+            &["md", "--lambda", "1", "--delta", "0", "--path", "retract"],
+            &["--path retract", "needs --from"],
+        ),
+        arg_case(
+            "negative points names the option",
+            &["md", "--lambda", "1", "--points", "-5"],
+            &["--points", "-5"],
+        ),
+        arg_case(
+            "negative cycles names the option",
+            &["switch", "--cycles", "-1"],
+            &["--cycles", "-1"],
+        ),
+        arg_case(
+            "too many cycles",
+            &["switch", "--cycles", "5000"],
+            &["`cycles` = 5000"],
+        ),
+        arg_case(
+            "negative delta_max flag",
+            &["asperity", "--delta-max", "-1e-9"],
+            &["delta_max[0]", "-1e-9"],
+        ),
+        arg_case(
+            "missing scene file",
+            &["asperity", "--scene", "/nonexistent/scene.toml"],
+            &["cannot read"],
+        ),
+        arg_case(
+            "unknown subcommand",
+            &["frobnicate"],
+            &["unrecognized subcommand"],
+        ),
+        arg_case(
+            "not a number",
+            &["md", "--lambda", "one"],
+            &["invalid value 'one'", "--lambda"],
+        ),
         // a numerical failure: a sparse, very smooth surface cannot absorb 100 J/m^2
         Case {
             name: "energy the surface cannot absorb",
@@ -142,20 +426,42 @@ fn bad_inputs_get_a_named_error_and_the_right_exit_status() {
         let mut args: Vec<String> = c.args.iter().map(|s| s.to_string()).collect();
         if let Some(bytes) = &c.scene {
             let f = temp_file(&format!("bad-{i}"), bytes);
-            args = vec![c.kind.to_string(), "--scene".into(), f.to_string_lossy().into()];
+            args = vec![
+                c.kind.to_string(),
+                "--scene".into(),
+                f.to_string_lossy().into(),
+            ];
         }
         let argv: Vec<&str> = args.iter().map(String::as_str).collect();
         let out = stiction(&argv);
         let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(c.code), "{}: status {:?}, stderr {err}", c.name, out.status.code());
+        assert_eq!(
+            out.status.code(),
+            Some(c.code),
+            "{}: status {:?}, stderr {err}",
+            c.name,
+            out.status.code()
+        );
         for fragment in &c.fragments {
-            assert!(err.contains(fragment), "{}: stderr lacks `{fragment}`:\n{err}", c.name);
+            assert!(
+                err.contains(fragment),
+                "{}: stderr lacks `{fragment}`:\n{err}",
+                c.name
+            );
         }
         assert!(!err.contains("panicked"), "{}: panic", c.name);
         // numbers never print with hundreds of digits
-        assert!(!err.contains("0000000000000000"), "{}: a number in full: {err}", c.name);
+        assert!(
+            !err.contains("0000000000000000"),
+            "{}: a number in full: {err}",
+            c.name
+        );
         if c.scene.is_some() {
-            assert!(err.contains(".toml"), "{}: the file is not named: {err}", c.name);
+            assert!(
+                err.contains(".toml"),
+                "{}: the file is not named: {err}",
+                c.name
+            );
         }
     }
 }
@@ -166,13 +472,19 @@ fn bad_inputs_get_a_named_error_and_the_right_exit_status() {
 #[test]
 fn every_numeric_domain_is_enforced_at_both_ends() {
     use stiction::scene::fields::{self, Domain};
-    for f in fields::FIELDS.iter().filter(|f| f.scenes.contains(&fields::Kind::Switch)) {
+    for f in fields::FIELDS
+        .iter()
+        .filter(|f| f.scenes.contains(&fields::Kind::Switch))
+    {
         let (lo, hi) = match f.domain {
             Domain::Range { lo, hi, .. } => (lo, hi),
             Domain::RangeOrInfinite { lo } => (lo, f64::INFINITY),
             _ => continue,
         };
-        if f.key == "switch.k_s" || f.key == "switch.voltage" || f.key.starts_with("contact.counter") {
+        if f.key == "switch.k_s"
+            || f.key == "switch.voltage"
+            || f.key.starts_with("contact.counter")
+        {
             continue; // keys of the other drive or of counter = "material", checked above
         }
         let base: SwitchScene = scene::parse("t", scene::DEFAULT_SWITCH).unwrap();

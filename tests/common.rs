@@ -32,7 +32,11 @@ pub fn temp_file(tag: &str, bytes: &[u8]) -> PathBuf {
 
 /// Standard output as JSON (the run must succeed).
 pub fn json(out: &Output) -> serde_json::Value {
-    assert!(out.status.success(), "stderr: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).expect("valid JSON")
 }
 

@@ -8,7 +8,8 @@ const BEGIN: &str = "<!-- scene fields: begin -->";
 const END: &str = "<!-- scene fields: end -->";
 
 fn documented() -> String {
-    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/validation.md")).unwrap();
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/validation.md"))
+        .unwrap();
     let a = doc.find(BEGIN).expect("begin marker") + BEGIN.len();
     let b = doc.find(END).expect("end marker");
     doc[a..b].trim().to_string()
@@ -28,7 +29,12 @@ fn every_key_is_documented_once() {
     let doc = documented();
     for f in FIELDS {
         let row = format!("| `{}` |", f.key);
-        assert_eq!(doc.lines().filter(|l| l.starts_with(&row)).count(), 1, "{}", f.key);
+        assert_eq!(
+            doc.lines().filter(|l| l.starts_with(&row)).count(),
+            1,
+            "{}",
+            f.key
+        );
     }
     // header, separator and one row per key
     assert_eq!(doc.lines().count(), FIELDS.len() + 2);

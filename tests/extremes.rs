@@ -19,7 +19,14 @@ fn switch_scene() -> SwitchScene {
 fn run(name: &str, s: &SwitchScene) -> Result<SwitchReport, Error> {
     let mut s = s.clone();
     s.validate(name).unwrap();
-    switch::run(&Loaded { file: name.into(), scene: s, is_paper: false }, false)
+    switch::run(
+        &Loaded {
+            file: name.into(),
+            scene: s,
+            is_paper: false,
+        },
+        false,
+    )
 }
 
 /// Ok with invariants, or the one error a physical scene may legitimately meet.
@@ -32,12 +39,28 @@ fn check(name: &str, s: &SwitchScene) -> Option<SwitchReport> {
             // loading (theory 2.6), bounded here at 1e-3 sigma_s.
             let mut deepest = f64::INFINITY;
             for (k, c) in r.cycles.iter().enumerate() {
-                assert!(c.d_e.is_finite() && c.pull_out_pressure.is_finite() && c.pull_out_pressure >= 0.0, "{name}: {c:?}");
-                assert!(c.contact_pressure > 0.0, "{name}: d_e where the pressure is compressive");
+                assert!(
+                    c.d_e.is_finite()
+                        && c.pull_out_pressure.is_finite()
+                        && c.pull_out_pressure >= 0.0,
+                    "{name}: {c:?}"
+                );
+                assert!(
+                    c.contact_pressure > 0.0,
+                    "{name}: d_e where the pressure is compressive"
+                );
                 if c.d_e >= deepest {
-                    assert!(c.d_e - deepest < 1e-3 * s.surface.sigma_s, "{name}: d_e rose by {}", (c.d_e - deepest) / s.surface.sigma_s);
+                    assert!(
+                        c.d_e - deepest < 1e-3 * s.surface.sigma_s,
+                        "{name}: d_e rose by {}",
+                        (c.d_e - deepest) / s.surface.sigma_s
+                    );
                     if let Some(next) = r.cycles.get(k + 1) {
-                        assert_eq!(next.d_e, c.d_e, "{name}: cycle {} must repeat cycle {}", next.cycle, c.cycle);
+                        assert_eq!(
+                            next.d_e, c.d_e,
+                            "{name}: cycle {} must repeat cycle {}",
+                            next.cycle, c.cycle
+                        );
                         assert_eq!(next.pull_out_pressure, c.pull_out_pressure);
                     }
                 }
@@ -46,7 +69,14 @@ fn check(name: &str, s: &SwitchScene) -> Option<SwitchReport> {
             assert!(r.k_s.is_finite() && r.v_pull_in.is_finite());
             Some(r)
         }
-        Err(e) if matches!(e.cause(), Error::Switch(SwitchError::EnergyNotAbsorbed { .. })) => None,
+        Err(e)
+            if matches!(
+                e.cause(),
+                Error::Switch(SwitchError::EnergyNotAbsorbed { .. })
+            ) =>
+        {
+            None
+        }
         Err(e) => panic!("{name}: {e}"),
     }
 }
@@ -57,7 +87,11 @@ fn roughness_from_a_tenth_to_a_thousand_nanometres() {
         let mut s = switch_scene();
         s.surface.sigma_s = sigma;
         let r = check(&format!("sigma_s {sigma}"), &s).expect("0.5 J/m^2 is absorbed");
-        assert!(r.cycles[0].d_e.abs() < 30.0 * sigma + 2e-8, "sigma {sigma}: d_e {}", r.cycles[0].d_e);
+        assert!(
+            r.cycles[0].d_e.abs() < 30.0 * sigma + 2e-8,
+            "sigma {sigma}: d_e {}",
+            r.cycles[0].d_e
+        );
     }
 }
 
@@ -70,7 +104,10 @@ fn asperity_density_from_one_to_a_thousand_per_square_micron() {
         let r = check(&format!("density {n}"), &s).expect("absorbed");
         // more asperities carry the same energy with less penetration
         let d_e = r.cycles[0].d_e;
-        assert!(d_e > last_de || last_de.is_infinite(), "density {n}: d_e {d_e} after {last_de}");
+        assert!(
+            d_e > last_de || last_de.is_infinite(),
+            "density {n}: d_e {d_e} after {last_de}"
+        );
         last_de = d_e;
     }
 }
@@ -106,7 +143,12 @@ fn a_rigid_counter_surface_and_a_material_one() {
     let soft = check("soft counter", &s).unwrap();
     s.contact.counter_yield_stress = None;
     let hard = check("elastic counter", &s).unwrap();
-    assert!(soft.cycles[0].pull_out_pressure > hard.cycles[0].pull_out_pressure, "{} vs {}", soft.cycles[0].pull_out_pressure, hard.cycles[0].pull_out_pressure);
+    assert!(
+        soft.cycles[0].pull_out_pressure > hard.cycles[0].pull_out_pressure,
+        "{} vs {}",
+        soft.cycles[0].pull_out_pressure,
+        hard.cycles[0].pull_out_pressure
+    );
 }
 
 #[test]
@@ -118,7 +160,10 @@ fn a_material_that_never_yields_is_the_elastic_case() {
     let elastic = check("elastic", &s).unwrap();
     // delta_CP at S_Y = 1e15 is beyond every interference reached: identical to elastic
     assert_eq!(stiff.cycles[0].d_e, elastic.cycles[0].d_e);
-    assert_eq!(stiff.cycles[0].pull_out_pressure, elastic.cycles[0].pull_out_pressure);
+    assert_eq!(
+        stiff.cycles[0].pull_out_pressure,
+        elastic.cycles[0].pull_out_pressure
+    );
 }
 
 #[test]
@@ -128,8 +173,19 @@ fn asperity_far_beyond_the_fits_stays_finite_and_warns() {
     a.points = 20;
     a.validate("t").unwrap();
     use stiction::commands::{asperity::AsperityCommand, Command};
-    let cmd = AsperityCommand { scene: None, delta_max: vec![], format: stiction::render::Format::Json, plot: None };
-    let r = cmd.run(&Loaded { file: "t".into(), scene: a, is_paper: false }).unwrap();
+    let cmd = AsperityCommand {
+        scene: None,
+        delta_max: vec![],
+        format: stiction::render::Format::Json,
+        plot: None,
+    };
+    let r = cmd
+        .run(&Loaded {
+            file: "t".into(),
+            scene: a,
+            is_paper: false,
+        })
+        .unwrap();
     assert!(r.cases[0].pull_off_force.is_finite() && r.cases[0].extrapolated);
     assert!(r.warnings.iter().any(|w| w.code == "beyond_fit_range"));
 }

@@ -6,9 +6,17 @@ use common::{has_null, json, scene_with, stiction, temp_dir, temp_file};
 use std::process::{Command, Stdio};
 
 fn switch_scene(tag: &str, edits: &[(&str, &str)]) -> std::path::PathBuf {
-    let mut all = vec![("points", "points = 0"), ("accuracy", "accuracy = \"fast\""), ("cycles", "cycles = 2"), ("elastic_comparison", "elastic_comparison = false")];
+    let mut all = vec![
+        ("points", "points = 0"),
+        ("accuracy", "accuracy = \"fast\""),
+        ("cycles", "cycles = 2"),
+        ("elastic_comparison", "elastic_comparison = false"),
+    ];
     all.extend_from_slice(edits);
-    temp_file(&format!("guard-{tag}"), scene_with("switch", &all).as_bytes())
+    temp_file(
+        &format!("guard-{tag}"),
+        scene_with("switch", &all).as_bytes(),
+    )
 }
 
 /// Released from rest under a step voltage, the electrode closes only above the dynamic
@@ -17,8 +25,19 @@ fn switch_scene(tag: &str, edits: &[(&str, &str)]) -> std::path::PathBuf {
 #[test]
 fn below_the_dynamic_pull_in_voltage_the_switch_does_not_close() {
     // the paper's K_s: V_PI = 48.2405 V, dynamic pull-in sqrt(27/32) V_PI = 44.3117 V
-    for (u, closes) in [("30.0", false), ("44.2", false), ("44.5", true), ("48.0", true)] {
-        let f = switch_scene(&format!("close-{u}"), &[("impact_energy", &format!("k_s = 8.440183830384662e9\nvoltage = {u}"))]);
+    for (u, closes) in [
+        ("30.0", false),
+        ("44.2", false),
+        ("44.5", true),
+        ("48.0", true),
+    ] {
+        let f = switch_scene(
+            &format!("close-{u}"),
+            &[(
+                "impact_energy",
+                &format!("k_s = 8.440183830384662e9\nvoltage = {u}"),
+            )],
+        );
         let out = stiction(&["switch", "--scene", f.to_str().unwrap(), "--format", "json"]);
         let v = json(&out);
         assert!((v["dynamic_pull_in_voltage"].as_f64().unwrap() - 44.3117).abs() < 1e-3);
@@ -41,14 +60,27 @@ fn below_the_dynamic_pull_in_voltage_the_switch_does_not_close() {
 #[test]
 fn the_table_says_what_was_given_and_what_was_derived() {
     let f = switch_scene("drive-a", &[]);
-    let text = String::from_utf8(stiction(&["switch", "--scene", f.to_str().unwrap()]).stdout).unwrap();
+    let text =
+        String::from_utf8(stiction(&["switch", "--scene", f.to_str().unwrap()]).stdout).unwrap();
     assert!(text.contains("K_s = 8.44018e9 Pa/m (derived)"), "{text}");
     assert!(text.contains("E_I = 5e-1 J/m^2 (given)"), "{text}");
-    assert!(text.contains("eq 1 as_printed") && text.contains("accuracy fast") && text.contains("maugis_kim"), "{text}");
+    assert!(
+        text.contains("eq 1 as_printed")
+            && text.contains("accuracy fast")
+            && text.contains("maugis_kim"),
+        "{text}"
+    );
     assert!(text.contains("ratio"));
-    let f = switch_scene("drive-b", &[("impact_energy", "k_s = 1e10\nvoltage = 60.0")]);
-    let text = String::from_utf8(stiction(&["switch", "--scene", f.to_str().unwrap()]).stdout).unwrap();
-    assert!(text.contains("(given), U = 60.0000 V (given)") && text.contains("J/m^2 (derived)"), "{text}");
+    let f = switch_scene(
+        "drive-b",
+        &[("impact_energy", "k_s = 1e10\nvoltage = 60.0")],
+    );
+    let text =
+        String::from_utf8(stiction(&["switch", "--scene", f.to_str().unwrap()]).stdout).unwrap();
+    assert!(
+        text.contains("(given), U = 60.0000 V (given)") && text.contains("J/m^2 (derived)"),
+        "{text}"
+    );
 }
 
 /// A gold-like film: adhesion alone presses an asperity beyond its yield onset (the
@@ -56,29 +88,73 @@ fn the_table_says_what_was_given_and_what_was_derived() {
 /// scene raises none of these.
 #[test]
 fn warnings_where_the_model_leaves_its_ground() {
-    let f = switch_scene("gold", &[
-        ("youngs_modulus", "youngs_modulus = 79e9"),
-        ("yield_stress", "yield_stress = 0.3e9"),
-    ]);
+    let f = switch_scene(
+        "gold",
+        &[
+            ("youngs_modulus", "youngs_modulus = 79e9"),
+            ("yield_stress", "yield_stress = 0.3e9"),
+        ],
+    );
     let out = stiction(&["switch", "--scene", f.to_str().unwrap(), "--format", "json"]);
     let v = json(&out);
-    let codes: Vec<&str> = v["warnings"].as_array().unwrap().iter().map(|w| w["code"].as_str().unwrap()).collect();
+    let codes: Vec<&str> = v["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["code"].as_str().unwrap())
+        .collect();
     assert!(codes.contains(&"adhesion_yields_asperity"), "{codes:?}");
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.lines().any(|l| l.starts_with("warning[adhesion_yields_asperity]:")), "{err}");
+    assert!(
+        err.lines()
+            .any(|l| l.starts_with("warning[adhesion_yields_asperity]:")),
+        "{err}"
+    );
     let paper = switch_scene("paper-ru", &[]);
-    let v = json(&stiction(&["switch", "--scene", paper.to_str().unwrap(), "--format", "json"]));
-    assert!(v["warnings"].as_array().unwrap().iter().all(|w| w["code"] != "adhesion_yields_asperity"), "{v}");
+    let v = json(&stiction(&[
+        "switch",
+        "--scene",
+        paper.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
+    assert!(
+        v["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|w| w["code"] != "adhesion_yields_asperity"),
+        "{v}"
+    );
 }
 
 /// Beyond delta_max/delta_CP = 110 the fits extrapolate; the share of the load carried
 /// there is what is reported.
 #[test]
 fn a_surface_pressed_far_beyond_the_fits_warns() {
-    let text = scene_with("surface", &[("points", "points = 4"), ("accuracy", "accuracy = \"fast\""), ("unload_from", "unload_from = -9e-7"), ("sigma_s", "sigma_s = 5e-8")]);
+    let text = scene_with(
+        "surface",
+        &[
+            ("points", "points = 4"),
+            ("accuracy", "accuracy = \"fast\""),
+            ("unload_from", "unload_from = -9e-7"),
+            ("sigma_s", "sigma_s = 5e-8"),
+        ],
+    );
     let f = temp_file("guard-deep", text.as_bytes());
-    let v = json(&stiction(&["surface", "--scene", f.to_str().unwrap(), "--format", "json"]));
-    let codes: Vec<&str> = v["warnings"].as_array().unwrap().iter().map(|w| w["code"].as_str().unwrap()).collect();
+    let v = json(&stiction(&[
+        "surface",
+        "--scene",
+        f.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
+    let codes: Vec<&str> = v["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["code"].as_str().unwrap())
+        .collect();
     assert!(codes.contains(&"beyond_fit_range"), "{codes:?}");
     assert!(codes.contains(&"pressure_above_hardness"), "{codes:?}");
 }
@@ -94,10 +170,18 @@ fn a_closed_pipe_ends_quietly_and_a_full_disk_is_an_error() {
         .unwrap();
     drop(child.stdout.take());
     let out = child.wait_with_output().unwrap();
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
     if std::path::Path::new("/dev/full").exists() {
-        let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
         let out = Command::new(env!("CARGO_BIN_EXE_stiction"))
             .args(["md", "--lambda", "1"])
             .stdout(full)
@@ -106,7 +190,10 @@ fn a_closed_pipe_ends_quietly_and_a_full_disk_is_an_error() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert_ne!(out.status.code(), Some(0));
         assert_ne!(out.status.code(), Some(101), "{err}");
-        assert!(err.contains("standard output") && !err.contains("panicked"), "{err}");
+        assert!(
+            err.contains("standard output") && !err.contains("panicked"),
+            "{err}"
+        );
     }
 }
 
@@ -115,7 +202,15 @@ fn output_folders_are_replaced_whole_or_left_alone() {
     let base = temp_dir("atomic");
     let dir = base.join("out");
     let f = switch_scene("atomic", &[("points", "points = 8")]);
-    let run = |scene: &std::path::Path| stiction(&["switch", "--scene", scene.to_str().unwrap(), "--out", dir.to_str().unwrap()]);
+    let run = |scene: &std::path::Path| {
+        stiction(&[
+            "switch",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--out",
+            dir.to_str().unwrap(),
+        ])
+    };
     assert!(run(&f).status.success());
     let first = std::fs::read(dir.join("switch.json")).unwrap();
     // a folder that holds something else is refused, and nothing in it is touched
@@ -128,15 +223,28 @@ fn output_folders_are_replaced_whole_or_left_alone() {
     // a run without curves leaves no plot of an earlier run beside its results
     let no_curves = switch_scene("atomic-0", &[("points", "points = 0")]);
     assert!(run(&no_curves).status.success());
-    assert!(!dir.join("switch.svg").exists(), "stale switch.svg left behind");
+    assert!(
+        !dir.join("switch.svg").exists(),
+        "stale switch.svg left behind"
+    );
     assert!(dir.join("switch.json").exists());
     // a failing run (cannot write: the target's parent is a file) leaves the old results
     let blocked = base.join("file-not-dir");
     std::fs::write(&blocked, "x").unwrap();
-    let out = stiction(&["switch", "--scene", f.to_str().unwrap(), "--out", blocked.join("out").to_str().unwrap()]);
+    let out = stiction(&[
+        "switch",
+        "--scene",
+        f.to_str().unwrap(),
+        "--out",
+        blocked.join("out").to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(2));
     // no staging folders are left anywhere
-    let leftovers: Vec<_> = std::fs::read_dir(&base).unwrap().filter_map(|e| e.ok()).filter(|e| e.file_name().to_string_lossy().starts_with(".out.")).collect();
+    let leftovers: Vec<_> = std::fs::read_dir(&base)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().starts_with(".out."))
+        .collect();
     assert!(leftovers.is_empty(), "{leftovers:?}");
 }
 
@@ -162,18 +270,31 @@ fn a_law_returning_nan_is_named() {
     struct Broken;
     impl AdhesionLaw for Broken {
         fn force(&self, _r: f64, delta: f64, _p: Path) -> Result<f64, LawError> {
-            Ok(if delta > 1e-9 { f64::NAN } else { delta.max(0.0) })
+            Ok(if delta > 1e-9 {
+                f64::NAN
+            } else {
+                delta.max(0.0)
+            })
         }
         fn jumps(&self, _r: f64) -> Result<Jumps, LawError> {
-            Ok(Jumps { jump_in: 0.0, jump_out: 0.0 })
+            Ok(Jumps {
+                jump_in: 0.0,
+                jump_out: 0.0,
+            })
         }
     }
     let gw = GreenwoodWilliamson::new(
         ElastoPlasticAsperity::new(Elastic::new(4e-6).unwrap(), Broken),
-        Roughness { sigma_s: 7.78e-9, asperity_density: 1e13 },
+        Roughness {
+            sigma_s: 7.78e-9,
+            asperity_density: 1e13,
+        },
         Quadrature::default(),
     )
     .unwrap();
-    let e = gw.pressure(0.0, &gw.virgin(), Path::Approach).unwrap_err().to_string();
+    let e = gw
+        .pressure(0.0, &gw.virgin(), Path::Approach)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("NaN") && e.contains("asperity law"), "{e}");
 }

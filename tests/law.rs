@@ -524,7 +524,7 @@ fn default_histories_run_from_the_first_touch_down_past_the_deepest_impact() {
 /// -- --ignored`): converged, measured error within the issue's 1e-3, and the switch's
 /// own history inside the table.
 #[test]
-#[ignore]
+#[ignore = "the paper's whole law takes about a minute in release; run with --ignored"]
 fn paper_default_law_meets_the_issue_tolerance() {
     let dir = temp_dir("law-paper");
     let out = dir.join("law");

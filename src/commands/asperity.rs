@@ -142,13 +142,23 @@ impl Command for AsperityCommand {
             let j0 = plastic.jumps(virgin)?;
             let start = j0.jump_in - 0.02 * (dmax - j0.jump_in);
             let loading = linspace(start, dmax, n)
-                .map(|delta| Ok(ForcePoint { delta, force: plastic.force(delta, virgin, Path::Approach)? }))
+                .map(|delta| {
+                    Ok(ForcePoint {
+                        delta,
+                        force: plastic.force(delta, virgin, Path::Approach)?,
+                    })
+                })
                 .collect::<Result<Vec<_>, Error>>()?;
             let hist = AsperityHistory { delta_max: dmax };
             let j = plastic.jumps(hist)?;
             let end = j.jump_out - 0.02 * (dmax - j.jump_out);
             let unloading = linspace(dmax, end, n)
-                .map(|delta| Ok(ForcePoint { delta, force: plastic.force(delta, hist, Path::Retract { from: dmax })? }))
+                .map(|delta| {
+                    Ok(ForcePoint {
+                        delta,
+                        force: plastic.force(delta, hist, Path::Retract { from: dmax })?,
+                    })
+                })
                 .collect::<Result<Vec<_>, Error>>()?;
             let pull = plastic.pull_off(dmax)?;
             let epull = elastic.pull_off(dmax)?;
@@ -170,7 +180,9 @@ impl Command for AsperityCommand {
             });
         }
         let dcp = plastic.delta_cp();
-        let mut warnings: Vec<Warning> = guards::adhesion_yields(c, &plastic, &elastic)?.into_iter().collect();
+        let mut warnings: Vec<Warning> = guards::adhesion_yields(c, &plastic, &elastic)?
+            .into_iter()
+            .collect();
         warnings.extend(guards::asperity_beyond_fit(dcp, &scene.delta_max));
         Ok(AsperityReport {
             title: loaded.title(),
@@ -203,8 +215,14 @@ pub fn plot_svg(r: &AsperityReport) -> Result<String, String> {
     for c in &r.cases {
         let tag = format!("{:.0} nm", c.delta_max * 1e9);
         let pts = |v: &[ForcePoint]| v.iter().map(|p| (p.delta * 1e9, p.force * 1e6)).collect();
-        series.push(Series { name: format!("loading to {tag}"), points: pts(&c.loading) });
-        series.push(Series { name: format!("unloading from {tag}"), points: pts(&c.unloading) });
+        series.push(Series {
+            name: format!("loading to {tag}"),
+            points: pts(&c.loading),
+        });
+        series.push(Series {
+            name: format!("unloading from {tag}"),
+            points: pts(&c.unloading),
+        });
     }
     plot::svg(
         &r.title,

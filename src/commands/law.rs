@@ -681,7 +681,11 @@ fn law_guards(
     let deepest_pull = summary
         .first()
         .map_or(0.0, |b| -b.pull_out_pressure.min(0.0));
-    warnings.extend(guards::pressure_above_hardness(c, compressive, deepest_pull));
+    warnings.extend(guards::pressure_above_hardness(
+        c,
+        compressive,
+        deepest_pull,
+    ));
     let plastic = model::asperity(c, false)?;
     let elastic = model::asperity(c, true)?;
     warnings.extend(guards::adhesion_yields(c, &plastic, &elastic)?);

@@ -46,7 +46,10 @@ impl MdCommand {
     /// The curve, or one point with --delta.
     pub fn execute(&self) -> Result<String, Error> {
         let Some(delta) = self.delta else {
-            return Ok(super::show(&curve(self.lambda, self.points, self.delta_end)?, self.format));
+            return Ok(super::show(
+                &curve(self.lambda, self.points, self.delta_end)?,
+                self.format,
+            ));
         };
         let p = match (self.path, self.from) {
             (PathArg::Approach, None) => Path::Approach,
@@ -99,7 +102,10 @@ fn curve_for(lambda: f64) -> Result<MdCurve, Error> {
     if !(lambda.is_finite() && (1e-6..=1e6).contains(&lambda)) {
         return Err(Error::usage(
             "--lambda",
-            format!("{}: must be finite and in [1e-6, 1e6]", crate::scene::num(lambda)),
+            format!(
+                "{}: must be finite and in [1e-6, 1e6]",
+                crate::scene::num(lambda)
+            ),
         ));
     }
     Ok(MdCurve::new(lambda)?)
@@ -109,7 +115,10 @@ fn curve_for(lambda: f64) -> Result<MdCurve, Error> {
 pub fn curve(lambda: f64, points: usize, delta_end: f64) -> Result<MdReport, Error> {
     let c = curve_for(lambda)?;
     if !(4..=100_000).contains(&points) {
-        return Err(Error::usage("--points", format!("{points}: must be in [4, 100000]")));
+        return Err(Error::usage(
+            "--points",
+            format!("{points}: must be in [4, 100000]"),
+        ));
     }
     let dj = c.junction().delta;
     if !(delta_end.is_finite() && delta_end > dj && delta_end <= 1e6) {
@@ -138,13 +147,25 @@ pub fn curve(lambda: f64, points: usize, delta_end: f64) -> Result<MdReport, Err
 pub fn point(lambda: f64, delta: f64, path: Path) -> Result<MdPointReport, Error> {
     let c = curve_for(lambda)?;
     if !(delta.is_finite() && delta.abs() <= 1e6) {
-        return Err(Error::usage("--delta", format!("{}: must be finite, |Delta| <= 1e6", crate::scene::num(delta))));
+        return Err(Error::usage(
+            "--delta",
+            format!(
+                "{}: must be finite, |Delta| <= 1e6",
+                crate::scene::num(delta)
+            ),
+        ));
     }
     let (name, from) = match path {
         Path::Approach => ("approach", None),
         Path::Retract { from } => {
             if !(from.is_finite() && from.abs() <= 1e6) {
-                return Err(Error::usage("--from", format!("{}: must be finite, |Delta| <= 1e6", crate::scene::num(from))));
+                return Err(Error::usage(
+                    "--from",
+                    format!(
+                        "{}: must be finite, |Delta| <= 1e6",
+                        crate::scene::num(from)
+                    ),
+                ));
             }
             ("retract", Some(from))
         }
@@ -161,16 +182,32 @@ pub fn point(lambda: f64, delta: f64, path: Path) -> Result<MdPointReport, Error
 impl Render for MdReport {
     fn table(&self) -> String {
         let mut s = String::new();
-        let _ = writeln!(s, "Maugis-Kim, lambda = {} (nondimensional, eq 7)", self.lambda);
+        let _ = writeln!(
+            s,
+            "Maugis-Kim, lambda = {} (nondimensional, eq 7)",
+            self.lambda
+        );
         let _ = writeln!(s, "  jump-in      Delta_in = {:.10}", self.jump_in_delta);
         let _ = writeln!(
             s,
             "  turning pt.  Delta_t  = {:.10}   Fbar_t = {:.10}",
             self.turning_delta, self.turning_force
         );
-        let _ = writeln!(s, "  pull-off, load control         Fbar = {:.10}", self.pull_off_load_control);
-        let _ = writeln!(s, "  pull-off, displacement control Fbar = {:.10}", self.pull_off_displacement_control);
-        let _ = writeln!(s, "{:>14} {:>14} {:>12} {:>12} {:>7}", "Delta", "Fbar", "A", "C", "stable");
+        let _ = writeln!(
+            s,
+            "  pull-off, load control         Fbar = {:.10}",
+            self.pull_off_load_control
+        );
+        let _ = writeln!(
+            s,
+            "  pull-off, displacement control Fbar = {:.10}",
+            self.pull_off_displacement_control
+        );
+        let _ = writeln!(
+            s,
+            "{:>14} {:>14} {:>12} {:>12} {:>7}",
+            "Delta", "Fbar", "A", "C", "stable"
+        );
         for p in &self.curve {
             let _ = writeln!(
                 s,
@@ -187,7 +224,11 @@ impl Render for MdReport {
                 maugis_kim::Branch::Contact => "contact",
                 maugis_kim::Branch::NonContact => "non_contact",
             };
-            let _ = writeln!(s, "{},{},{},{},{},{}", p.delta, p.force, p.a, p.c, branch, p.stable);
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{}",
+                p.delta, p.force, p.a, p.c, branch, p.stable
+            );
         }
         s
     }
@@ -201,6 +242,9 @@ impl Render for MdPointReport {
         )
     }
     fn csv(&self) -> String {
-        format!("lambda,delta,path,force\n{},{},{},{}\n", self.lambda, self.delta, self.path, self.force)
+        format!(
+            "lambda,delta,path,force\n{},{},{},{}\n",
+            self.lambda, self.delta, self.path, self.force
+        )
     }
 }

@@ -112,7 +112,10 @@ impl Command for SurfaceCommand {
                 .map(|d| {
                     let e = gw.pressure_estimate(d, hist, path)?;
                     worst = worst.max(e.error);
-                    Ok(PressurePoint { d, pressure: e.value })
+                    Ok(PressurePoint {
+                        d,
+                        pressure: e.value,
+                    })
                 })
                 .collect::<Result<Vec<_>, Error>>()
         };
@@ -121,7 +124,8 @@ impl Command for SurfaceCommand {
         let loaded_hist = gw.load(&virgin, deepest);
         let extrapolated_fraction = gw.fraction_beyond(&loaded_hist, FIT_RANGE_MAX);
         let mut warnings = Vec::new();
-        let (mut unloading, mut reloading, mut pull, mut pull_err) = (Vec::new(), Vec::new(), None, None);
+        let (mut unloading, mut reloading, mut pull, mut pull_err) =
+            (Vec::new(), Vec::new(), None, None);
         if let Some(d) = s.unload_from {
             let hist = gw.load(&virgin, d);
             let path = Path::Retract { from: d };
@@ -133,7 +137,11 @@ impl Command for SurfaceCommand {
             pull_err = Some(u.pull_out_error);
         }
         let compressive = gw.pressure(deepest, &virgin, Path::Approach)?.max(0.0);
-        warnings.extend(guards::pressure_above_hardness(&s.contact, compressive, pull.map_or(0.0, |p| p.0)));
+        warnings.extend(guards::pressure_above_hardness(
+            &s.contact,
+            compressive,
+            pull.map_or(0.0, |p| p.0),
+        ));
         let share = gw.load_share_beyond(deepest, &virgin, Path::Approach, FIT_RANGE_MAX)?;
         warnings.extend(guards::surface_beyond_fit(share, deepest));
         let plastic = model::asperity(&s.contact, false)?;
@@ -143,7 +151,10 @@ impl Command for SurfaceCommand {
             title: loaded.title(),
             sigma_s: s.surface.sigma_s,
             accuracy: s.accuracy.targets(),
-            error_estimate: SurfaceErrors { pressure: worst, pull_out: pull_err },
+            error_estimate: SurfaceErrors {
+                pressure: worst,
+                pull_out: pull_err,
+            },
             loading,
             unload_from: s.unload_from,
             unloading,
@@ -170,11 +181,22 @@ impl Command for SurfaceCommand {
 
 /// The contact law (MPa against nm), with a zoom on the adhesive part.
 pub fn plot_svg(r: &SurfaceReport) -> Result<String, String> {
-    let pts = |v: &[PressurePoint]| -> Vec<(f64, f64)> { v.iter().map(|p| (p.d * 1e9, p.pressure * 1e-6)).collect() };
-    let mut series = vec![Series { name: "virgin loading".into(), points: pts(&r.loading) }];
+    let pts = |v: &[PressurePoint]| -> Vec<(f64, f64)> {
+        v.iter().map(|p| (p.d * 1e9, p.pressure * 1e-6)).collect()
+    };
+    let mut series = vec![Series {
+        name: "virgin loading".into(),
+        points: pts(&r.loading),
+    }];
     if !r.unloading.is_empty() {
-        series.push(Series { name: "unloading".into(), points: pts(&r.unloading) });
-        series.push(Series { name: "reloading".into(), points: pts(&r.reloading) });
+        series.push(Series {
+            name: "unloading".into(),
+            points: pts(&r.unloading),
+        });
+        series.push(Series {
+            name: "reloading".into(),
+            points: pts(&r.reloading),
+        });
     }
     let mut panels = vec![Panel {
         caption: "whole curves".into(),
@@ -213,7 +235,11 @@ impl Render for SurfaceReport {
             self.accuracy.mode,
             render::pressure(self.error_estimate.pressure)
         );
-        if let (Some(p), Some(d), Some(u)) = (self.pull_out_pressure, self.pull_out_separation, self.unload_from) {
+        if let (Some(p), Some(d), Some(u)) = (
+            self.pull_out_pressure,
+            self.pull_out_separation,
+            self.unload_from,
+        ) {
             let _ = writeln!(
                 s,
                 "unloaded from d = {}: pull-out pressure {} at d = {}",
@@ -222,19 +248,36 @@ impl Render for SurfaceReport {
                 render::si(d, "m", 4)
             );
         }
-        let _ = writeln!(s, "{:>12} {:>14} {:>12} {:>14}", "d", "loading", "d", "unloading");
+        let _ = writeln!(
+            s,
+            "{:>12} {:>14} {:>12} {:>14}",
+            "d", "loading", "d", "unloading"
+        );
         for (i, p) in self.loading.iter().enumerate() {
             let u = self.unloading.get(i).map_or(String::new(), |q| {
-                format!("{:>12} {:>14}", render::si(q.d, "m", 4), render::pressure(q.pressure))
+                format!(
+                    "{:>12} {:>14}",
+                    render::si(q.d, "m", 4),
+                    render::pressure(q.pressure)
+                )
             });
-            let _ = writeln!(s, "{:>12} {:>14} {u}", render::si(p.d, "m", 4), render::pressure(p.pressure));
+            let _ = writeln!(
+                s,
+                "{:>12} {:>14} {u}",
+                render::si(p.d, "m", 4),
+                render::pressure(p.pressure)
+            );
         }
         s
     }
 
     fn csv(&self) -> String {
         let mut s = String::from("branch,d_m,pressure_pa\n");
-        for (name, pts) in [("loading", &self.loading), ("unloading", &self.unloading), ("reloading", &self.reloading)] {
+        for (name, pts) in [
+            ("loading", &self.loading),
+            ("unloading", &self.unloading),
+            ("reloading", &self.reloading),
+        ] {
             for p in pts {
                 let _ = writeln!(s, "{},{},{}", name, p.d, p.pressure);
             }

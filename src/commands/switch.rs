@@ -11,10 +11,10 @@ use crate::render::{self, Format, OutputSet, Render, Warning};
 use crate::scene::{self, Checker, Contact, Loaded, SwitchScene};
 use asperity_plastic::FIT_RANGE_MAX;
 use contact_core::{Path, SurfaceLaw};
+use gw_surface::GwHistory;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use gw_surface::GwHistory;
 use switch_1d::{
     CycleOptions, CycleRun, Impact, ImpactFilm, PressurePoint, Switch, SwitchGeometry,
 };
@@ -26,7 +26,11 @@ pub struct SwitchCommand {
     #[arg(long)]
     pub scene: Option<PathBuf>,
     /// Number of cycles (replaces the scene's), 1..1000.
-    #[arg(long, conflicts_with = "until_accommodated", allow_hyphen_values = true)]
+    #[arg(
+        long,
+        conflicts_with = "until_accommodated",
+        allow_hyphen_values = true
+    )]
     pub cycles: Option<usize>,
     /// Run until accommodation is detected (at most the scene's cycles, or 1000).
     #[arg(long)]
@@ -127,8 +131,15 @@ pub fn electrostatics(s: &SwitchScene, file: &str) -> Result<(Switch, Electrosta
                     return Err(c
                         .fail(
                             "switch.impact_energy",
-                            format!("{} (derived from k_s = {} Pa/m and voltage = {} V)", scene::num(e), scene::num(k), scene::num(u)),
-                            scene::fields::field("switch.impact_energy").map(|f| f.domain.describe()).unwrap_or_default(),
+                            format!(
+                                "{} (derived from k_s = {} Pa/m and voltage = {} V)",
+                                scene::num(e),
+                                scene::num(k),
+                                scene::num(u)
+                            ),
+                            scene::fields::field("switch.impact_energy")
+                                .map(|f| f.domain.describe())
+                                .unwrap_or_default(),
                         )
                         .into());
                 }
@@ -356,7 +367,10 @@ fn empty_report(loaded: &Loaded<SwitchScene>, es: &Electrostatics) -> SwitchRepo
             yield_modulus: c.yield_modulus().as_str(),
         },
         accuracy: s.accuracy.targets(),
-        error_estimate: SwitchErrors { d_e: 0.0, pull_out: 0.0 },
+        error_estimate: SwitchErrors {
+            d_e: 0.0,
+            pull_out: 0.0,
+        },
         k_s: es.k_s,
         v_pull_in: es.v_pull_in,
         dynamic_pull_in_voltage: es.dynamic_pull_in_voltage,
@@ -433,8 +447,16 @@ fn physics_guards(
     let plastic = model::asperity(c, false)?;
     let elastic = model::asperity(c, true)?;
     warnings.extend(guards::adhesion_yields(c, &plastic, &elastic)?);
-    let compressive = run.cycles.iter().map(|cy| cy.end.pressure).fold(0.0, f64::max);
-    warnings.extend(guards::pressure_above_hardness(c, compressive, run.largest_pull_out));
+    let compressive = run
+        .cycles
+        .iter()
+        .map(|cy| cy.end.pressure)
+        .fold(0.0, f64::max);
+    warnings.extend(guards::pressure_above_hardness(
+        c,
+        compressive,
+        run.largest_pull_out,
+    ));
     Ok(warnings)
 }
 
@@ -442,7 +464,11 @@ fn physics_guards(
 fn record(report: &mut SwitchReport, run: CycleRun<GwHistory>) {
     report.error_estimate = SwitchErrors {
         d_e: run.cycles.iter().map(|cy| cy.end.error).fold(0.0, f64::max),
-        pull_out: run.cycles.iter().map(|cy| cy.unloading.pull_out_error).fold(0.0, f64::max),
+        pull_out: run
+            .cycles
+            .iter()
+            .map(|cy| cy.unloading.pull_out_error)
+            .fold(0.0, f64::max),
     };
     report.cycles = run
         .cycles
@@ -544,28 +570,44 @@ pub fn curves_csv(r: &SwitchReport) -> String {
 /// Like the paper's Fig 4: loading, unloading of cycles 1, 2, 3 and the last, elastic;
 /// the whole curves above, the adhesive well below.
 pub fn plot_svg(r: &SwitchReport) -> Result<String, String> {
-    let pts = |v: &[PressurePoint]| -> Vec<(f64, f64)> { v.iter().map(|p| (p.d * 1e9, p.pressure * 1e-6)).collect() };
-    let mut series = vec![Series { name: "loading (cycle 1)".into(), points: pts(&r.loading) }];
+    let pts = |v: &[PressurePoint]| -> Vec<(f64, f64)> {
+        v.iter().map(|p| (p.d * 1e9, p.pressure * 1e-6)).collect()
+    };
+    let mut series = vec![Series {
+        name: "loading (cycle 1)".into(),
+        points: pts(&r.loading),
+    }];
     let last = r.cycles.last().map_or(0, |c| c.cycle);
     for c in &r.cycles {
         if [1, 2, 3, last].contains(&c.cycle) {
-            series.push(Series { name: format!("unloading, cycle {}", c.cycle), points: pts(&c.unloading) });
+            series.push(Series {
+                name: format!("unloading, cycle {}", c.cycle),
+                points: pts(&c.unloading),
+            });
         }
     }
     if let Some(e) = &r.elastic {
-        series.push(Series { name: "unloading, elastic asperities".into(), points: pts(&e.unloading) });
+        series.push(Series {
+            name: "unloading, elastic asperities".into(),
+            points: pts(&e.unloading),
+        });
     }
     let restoring = -r.restoring_pressure / r.contact_area_fraction * 1e-6;
     let (x0, x1) = r
         .loading
         .iter()
         .chain(r.cycles.iter().flat_map(|c| c.unloading.iter()))
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.d * 1e9), b.max(p.d * 1e9)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.d * 1e9), b.max(p.d * 1e9))
+        });
     series.push(Series {
         name: "- restoring pressure K_s d0 / phi".into(),
         points: vec![(x0, restoring), (x1, restoring)],
     });
-    let well = r.largest_pull_out.max(r.restoring_pressure / r.contact_area_fraction) * 1e-6;
+    let well = r
+        .largest_pull_out
+        .max(r.restoring_pressure / r.contact_area_fraction)
+        * 1e-6;
     let caption = format!(
         "{} adhesion, eq 1 {}, K_s = {:.4e} Pa/m, E_I = {:.4} J/m^2",
         r.laws.adhesion, r.laws.yield_modulus, r.k_s, r.impact_energy
@@ -666,7 +708,10 @@ impl SwitchReport {
             if self.contact_area_fraction == 1.0 {
                 "the whole electrode (phi = 1)".to_string()
             } else {
-                format!("a fraction phi = {} of the electrode", self.contact_area_fraction)
+                format!(
+                    "a fraction phi = {} of the electrode",
+                    self.contact_area_fraction
+                )
             }
         );
         s
@@ -723,7 +768,11 @@ impl SwitchReport {
         let _ = writeln!(s);
         match self.accommodated_after {
             Some(k) => {
-                let _ = writeln!(s, "accommodated after cycle {k} (next cycle changes by < {:e})", self.accommodation_tolerance);
+                let _ = writeln!(
+                    s,
+                    "accommodated after cycle {k} (next cycle changes by < {:e})",
+                    self.accommodation_tolerance
+                );
             }
             None => {
                 let _ = writeln!(
@@ -758,12 +807,19 @@ impl SwitchReport {
 
     /// The cycles as CSV (and the elastic comparison as a row `elastic`).
     fn cycles_csv(&self) -> String {
-        let mut s = String::from("cycle,d_e_m,pull_out_pressure_pa,pull_out_separation_m,sticks,pull_out_ratio\n");
+        let mut s = String::from(
+            "cycle,d_e_m,pull_out_pressure_pa,pull_out_separation_m,sticks,pull_out_ratio\n",
+        );
         for c in &self.cycles {
             let _ = writeln!(
                 s,
                 "{},{},{},{},{},{}",
-                c.cycle, c.d_e, c.pull_out_pressure, c.pull_out_separation, c.sticks, c.pull_out_ratio
+                c.cycle,
+                c.d_e,
+                c.pull_out_pressure,
+                c.pull_out_separation,
+                c.sticks,
+                c.pull_out_ratio
             );
         }
         if let Some(e) = &self.elastic {

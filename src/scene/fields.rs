@@ -166,6 +166,7 @@ pub const COUNTERS: &[&str] = &["rigid", "same", "material"];
 pub const ACCURACIES: &[&str] = &["accurate", "balanced", "fast", "reference"];
 
 /// Every key of every scene.
+#[rustfmt::skip]
 pub const FIELDS: &[Field] = &[
     Field { key: "title", unit: "", domain: Domain::Text, default: None, help: "title of plots and tables (default: the scene file's name)", scenes: ALL },
     Field { key: "contact.youngs_modulus", unit: "Pa", domain: range(1e6, 1e13), default: None, help: "Young's modulus E of the asperity-carrying film", scenes: ALL },
@@ -220,7 +221,8 @@ pub fn of(kind: Kind) -> impl Iterator<Item = &'static Field> {
 /// key, unit, domain, default, scenes. `tests/domains.rs` checks the document against it;
 /// `cargo xtask docs` rewrites it.
 pub fn markdown_table() -> String {
-    let mut s = String::from("| key | unit | accepts | default | scenes |\n|---|---|---|---|---|\n");
+    let mut s =
+        String::from("| key | unit | accepts | default | scenes |\n|---|---|---|---|---|\n");
     for f in FIELDS {
         let scenes: Vec<&str> = f
             .scenes

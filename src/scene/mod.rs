@@ -14,7 +14,6 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::io::Read;
 
-
 /// Scene files are at most this large (1 MiB): a scene is a few dozen lines.
 pub const MAX_SCENE_BYTES: u64 = 1 << 20;
 
@@ -414,7 +413,12 @@ impl<'a> Checker<'a> {
     }
 
     /// A field error.
-    pub fn fail(&self, key: &str, value: impl Into<String>, allowed: impl Into<String>) -> SceneError {
+    pub fn fail(
+        &self,
+        key: &str,
+        value: impl Into<String>,
+        allowed: impl Into<String>,
+    ) -> SceneError {
         SceneError::Field {
             file: self.file.to_string(),
             key: key.to_string(),
@@ -458,7 +462,9 @@ impl<'a> Checker<'a> {
         match c.counter {
             CounterKind::Material => {
                 for (key, v) in &counter_keys[..2] {
-                    let v = v.ok_or_else(|| self.fail(key, "missing", "given when counter = \"material\""))?;
+                    let v = v.ok_or_else(|| {
+                        self.fail(key, "missing", "given when counter = \"material\"")
+                    })?;
                     self.value(key, v)?;
                 }
                 if let Some(v) = c.counter_yield_stress {
@@ -490,8 +496,14 @@ impl<'a> Checker<'a> {
                 "finite with plasticity_law = \"etsion_kadin\" (use \"elastic\" for no yield)",
             ));
         }
-        let fit = asperity_plastic::EffectiveRadiusFit::new(c.effective_radius.c1, c.effective_radius.c2);
-        if let Err(asperity_plastic::PlasticError::Fit { field, value, allowed }) = fit {
+        let fit =
+            asperity_plastic::EffectiveRadiusFit::new(c.effective_radius.c1, c.effective_radius.c2);
+        if let Err(asperity_plastic::PlasticError::Fit {
+            field,
+            value,
+            allowed,
+        }) = fit
+        {
             let key = format!("contact.effective_radius.{field}");
             return Err(self.fail(&key, num(value), allowed));
         }
@@ -564,12 +576,20 @@ impl Scene for AsperityScene {
         let hi = 1e3 * self.contact.radius;
         for (i, &d) in self.delta_max.iter().enumerate() {
             if !(d.is_finite() && d > 0.0 && d <= hi) {
-                return Err(c.fail(&format!("delta_max[{i}]"), num(d), format!("finite and in (0, {}] (1e3 radius)", num(hi))));
+                return Err(c.fail(
+                    &format!("delta_max[{i}]"),
+                    num(d),
+                    format!("finite and in (0, {}] (1e3 radius)", num(hi)),
+                ));
             }
         }
         c.count("points", self.points)?;
         if self.points < 2 {
-            return Err(c.fail("points", self.points.to_string(), "at least 2 for the asperity curves"));
+            return Err(c.fail(
+                "points",
+                self.points.to_string(),
+                "at least 2 for the asperity curves",
+            ));
         }
         Ok(())
     }
@@ -592,13 +612,24 @@ impl Scene for SurfaceScene {
         for (key, v) in [("d_start", self.d_start), ("unload_from", self.unload_from)] {
             if let Some(d) = v {
                 if !(d.is_finite() && d.abs() <= lim) {
-                    return Err(c.fail(key, num(d), format!("finite and within 20 sigma_s = {} of the mean plane", num(lim))));
+                    return Err(c.fail(
+                        key,
+                        num(d),
+                        format!(
+                            "finite and within 20 sigma_s = {} of the mean plane",
+                            num(lim)
+                        ),
+                    ));
                 }
             }
         }
         c.count("points", self.points)?;
         if self.points < 2 {
-            return Err(c.fail("points", self.points.to_string(), "at least 2 for the surface curves"));
+            return Err(c.fail(
+                "points",
+                self.points.to_string(),
+                "at least 2 for the surface curves",
+            ));
         }
         Ok(())
     }
@@ -621,7 +652,9 @@ impl Scene for SwitchScene {
         c.count("cycles", self.cycles)?;
         c.value("accommodation_tolerance", self.accommodation_tolerance)?;
         c.count("points", self.points)?;
-        self.switch.film_youngs_modulus.get_or_insert(self.contact.youngs_modulus);
+        self.switch
+            .film_youngs_modulus
+            .get_or_insert(self.contact.youngs_modulus);
         Ok(())
     }
     fn title(&self) -> Option<&str> {

@@ -16,7 +16,14 @@ fn run(s: &SwitchScene, mode: Accuracy) -> (Result<SwitchReport, stiction::Error
     let mut s = s.clone();
     s.accuracy = mode;
     let t = Instant::now();
-    let r = switch::run(&Loaded { file: "generated".into(), scene: s, is_paper: false }, false);
+    let r = switch::run(
+        &Loaded {
+            file: "generated".into(),
+            scene: s,
+            is_paper: false,
+        },
+        false,
+    );
     (r, t.elapsed().as_secs_f64())
 }
 
@@ -31,12 +38,18 @@ fn no_end_of_impact(e: &stiction::Error) -> bool {
 
 fn errors(a: &SwitchReport, b: &SwitchReport, sigma: f64) -> (f64, f64) {
     let floor = 1e-9 * a.restoring_pressure / a.contact_area_fraction;
-    a.cycles.iter().zip(&b.cycles).fold((0.0f64, 0.0f64), |(de, po), (x, y)| {
-        (
-            de.max((x.d_e - y.d_e).abs() / sigma),
-            po.max((x.pull_out_pressure - y.pull_out_pressure).abs() / x.pull_out_pressure.abs().max(floor)),
-        )
-    })
+    a.cycles
+        .iter()
+        .zip(&b.cycles)
+        .fold((0.0f64, 0.0f64), |(de, po), (x, y)| {
+            (
+                de.max((x.d_e - y.d_e).abs() / sigma),
+                po.max(
+                    (x.pull_out_pressure - y.pull_out_pressure).abs()
+                        / x.pull_out_pressure.abs().max(floor),
+                ),
+            )
+        })
 }
 
 fn quantile(v: &mut [f64], q: f64) -> f64 {
@@ -62,8 +75,18 @@ pub fn main(args: &[&str]) -> Result<(), String> {
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match *a {
-            "--scenes" => n = it.next().and_then(|v| v.parse().ok()).ok_or("--scenes needs a count")?,
-            "--seed" => seed = it.next().and_then(|v| v.parse().ok()).ok_or("--seed needs a number")?,
+            "--scenes" => {
+                n = it
+                    .next()
+                    .and_then(|v| v.parse().ok())
+                    .ok_or("--scenes needs a count")?
+            }
+            "--seed" => {
+                seed = it
+                    .next()
+                    .and_then(|v| v.parse().ok())
+                    .ok_or("--seed needs a number")?
+            }
             other => return Err(format!("unknown option {other}")),
         }
     }
@@ -110,7 +133,9 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                     }
                     Err(e) => {
                         stats[k].failed += 1;
-                        notes.push(format!("{domain:?} {mode}: failed where the reference did not: {e}"));
+                        notes.push(format!(
+                            "{domain:?} {mode}: failed where the reference did not: {e}"
+                        ));
                     }
                 }
             }

@@ -111,27 +111,70 @@ fn scenes() -> Result<Vec<(String, Value)>, String> {
     let mut out = Vec::new();
     for lambda in [0.01, 0.1, 0.5, 0.9, 1.0, 2.0, 10.0, 100.0] {
         let r = md::curve(lambda, POINTS, 5.0).map_err(err)?;
-        out.push((format!("md_lambda_{lambda}"), serde_json::to_value(r).map_err(|e| e.to_string())?));
+        out.push((
+            format!("md_lambda_{lambda}"),
+            serde_json::to_value(r).map_err(|e| e.to_string())?,
+        ));
     }
-    let mut a: AsperityScene = scene::parse("asperity", scene::DEFAULT_ASPERITY).map_err(|e| e.to_string())?;
+    let mut a: AsperityScene =
+        scene::parse("asperity", scene::DEFAULT_ASPERITY).map_err(|e| e.to_string())?;
     a.points = POINTS;
     a.validate("asperity").map_err(|e| e.to_string())?;
-    let cmd = AsperityCommand { scene: None, delta_max: vec![], format: Format::Json, plot: None };
-    let r = cmd.run(&Loaded { file: "asperity".into(), scene: a, is_paper: true }).map_err(err)?;
-    out.push(("asperity_fig2".into(), strip(serde_json::to_value(r).unwrap())));
-    let mut s: SurfaceScene = scene::parse("surface", scene::DEFAULT_SURFACE).map_err(|e| e.to_string())?;
+    let cmd = AsperityCommand {
+        scene: None,
+        delta_max: vec![],
+        format: Format::Json,
+        plot: None,
+    };
+    let r = cmd
+        .run(&Loaded {
+            file: "asperity".into(),
+            scene: a,
+            is_paper: true,
+        })
+        .map_err(err)?;
+    out.push((
+        "asperity_fig2".into(),
+        strip(serde_json::to_value(r).unwrap()),
+    ));
+    let mut s: SurfaceScene =
+        scene::parse("surface", scene::DEFAULT_SURFACE).map_err(|e| e.to_string())?;
     s.points = POINTS;
     s.validate("surface").map_err(|e| e.to_string())?;
-    let cmd = SurfaceCommand { scene: None, unload_from: None, accuracy: None, format: Format::Json, plot: None };
-    let r = cmd.run(&Loaded { file: "surface".into(), scene: s, is_paper: true }).map_err(err)?;
+    let cmd = SurfaceCommand {
+        scene: None,
+        unload_from: None,
+        accuracy: None,
+        format: Format::Json,
+        plot: None,
+    };
+    let r = cmd
+        .run(&Loaded {
+            file: "surface".into(),
+            scene: s,
+            is_paper: true,
+        })
+        .map_err(err)?;
     out.push(("surface_ru".into(), strip(serde_json::to_value(r).unwrap())));
-    let mut w: SwitchScene = scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
+    let mut w: SwitchScene =
+        scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
     w.points = POINTS;
     w.validate("switch").map_err(|e| e.to_string())?;
-    let r = switch::run(&Loaded { file: "switch".into(), scene: w, is_paper: true }, false).map_err(err)?;
+    let r = switch::run(
+        &Loaded {
+            file: "switch".into(),
+            scene: w,
+            is_paper: true,
+        },
+        false,
+    )
+    .map_err(err)?;
     let mut v = strip(serde_json::to_value(&r).unwrap());
     // the elastic comparison gets a snapshot of its own
-    let elastic = v.as_object_mut().and_then(|o| o.remove("elastic")).unwrap_or(Value::Null);
+    let elastic = v
+        .as_object_mut()
+        .and_then(|o| o.remove("elastic"))
+        .unwrap_or(Value::Null);
     out.push(("switch_fig4".into(), v));
     out.push(("switch_elastic_comparison".into(), elastic));
     Ok(out)
@@ -148,7 +191,11 @@ fn field_table() -> Result<(), String> {
         return Err(format!("{path}: no {BEGIN} ... {END} markers"));
     };
     let table = stiction::scene::fields::markdown_table();
-    let new = format!("{}{BEGIN}\n{table}{END}{}", &doc[..a], &doc[b + END.len()..]);
+    let new = format!(
+        "{}{BEGIN}\n{table}{END}{}",
+        &doc[..a],
+        &doc[b + END.len()..]
+    );
     std::fs::write(path, new).map_err(|e| format!("{path}: {e}"))?;
     println!("wrote the scene-field table of docs/validation.md");
     Ok(())

@@ -12,11 +12,20 @@ use stiction::scene::{self, Loaded, Scene, SwitchScene};
 fn solve(s: &SwitchScene, mode: Accuracy) -> Result<SwitchReport, String> {
     let mut s = s.clone();
     s.accuracy = mode;
-    switch::run(&Loaded { file: "switch".into(), scene: s, is_paper: true }, false).map_err(|e| e.to_string())
+    switch::run(
+        &Loaded {
+            file: "switch".into(),
+            scene: s,
+            is_paper: true,
+        },
+        false,
+    )
+    .map_err(|e| e.to_string())
 }
 
 pub fn main() -> Result<(), String> {
-    let mut s: SwitchScene = scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
+    let mut s: SwitchScene =
+        scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
     s.points = 0;
     s.validate("switch").map_err(|e| e.to_string())?;
     let reference = solve(&s, Accuracy::Reference)?;
@@ -24,7 +33,12 @@ pub fn main() -> Result<(), String> {
     println!("| mode | time, 10 cycles + elastic (s) | max d_e error (sigma_s) | max relative pull-out error |");
     println!("|---|---|---|---|");
     let mut pts = Vec::new();
-    for mode in [Accuracy::Reference, Accuracy::Accurate, Accuracy::Balanced, Accuracy::Fast] {
+    for mode in [
+        Accuracy::Reference,
+        Accuracy::Accurate,
+        Accuracy::Balanced,
+        Accuracy::Fast,
+    ] {
         let mut best = f64::INFINITY;
         let mut r = None;
         for _ in 0..3 {
@@ -49,7 +63,10 @@ pub fn main() -> Result<(), String> {
             caption: "accurate, balanced, fast (errors against the reference mode)".into(),
             x_label: "log10 time [s]".into(),
             y_label: "log10 max relative pull-out error".into(),
-            series: vec![Series { name: "modes".into(), points: pts }],
+            series: vec![Series {
+                name: "modes".into(),
+                points: pts,
+            }],
             x_range: None,
             y_range: None,
         }],

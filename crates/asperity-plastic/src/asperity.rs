@@ -1,7 +1,6 @@
 use contact_core::numeric::{geomspace, grid_min, linspace, Tolerance};
 use contact_core::{
-    AdhesionLaw, AsperityHistory, AsperityModel, Jumps, LawError, Path, PlasticState,
-    PlasticityLaw,
+    AdhesionLaw, AsperityHistory, AsperityModel, Jumps, LawError, Path, PlasticState, PlasticityLaw,
 };
 
 /// One asperity: a plasticity law `P` and an adhesion law `A` composed as in the paper's

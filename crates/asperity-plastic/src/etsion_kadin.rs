@@ -79,16 +79,26 @@ impl EffectiveRadiusFit {
                 });
             }
         }
-        let bad = |field, value, allowed| Err(PlasticError::Fit {
-            field,
-            value,
-            allowed,
-        });
+        let bad = |field, value, allowed| {
+            Err(PlasticError::Fit {
+                field,
+                value,
+                allowed,
+            })
+        };
         if c1[2] < 0.0 {
-            return bad("c1[2]", c1[2], ">= 0 (c1 settles to a1 at large delta_max/delta_CP)");
+            return bad(
+                "c1[2]",
+                c1[2],
+                ">= 0 (c1 settles to a1 at large delta_max/delta_CP)",
+            );
         }
         if c1[0] < 0.0 {
-            return bad("c1[0]", c1[0], ">= 0 (c1 >= 0 keeps the loading radius positive)");
+            return bad(
+                "c1[0]",
+                c1[0],
+                ">= 0 (c1 >= 0 keeps the loading radius positive)",
+            );
         }
         if c1[0] + c1[1] * (-c1[2]).exp() < 0.0 {
             return bad("c1[1]", c1[1], "such that c1(1) = a1 + a2 exp(-a3) >= 0");
@@ -377,7 +387,11 @@ mod tests {
         let law = ru(YieldModulus::Composite);
         assert!(close(law.c_v(), 1.614960818115471, 1e-14));
         assert!(close(law.delta_cp(), 1.4831702606020387e-9, 1e-12));
-        assert!(close(law.critical_contact_radius(), 7.70238991638839e-08, 1e-12));
+        assert!(close(
+            law.critical_contact_radius(),
+            7.70238991638839e-08,
+            1e-12
+        ));
         assert!(close(law.critical_force(), 6.862742594014353e-05, 1e-12));
         // eq 3 equals the Hertz force at delta_CP when eq 1 uses E*
         let film = paper::RU;
@@ -386,7 +400,11 @@ mod tests {
         assert!(close(law.critical_force(), hertz, 1e-12));
         let printed = ru(YieldModulus::AsPrinted);
         assert!(close(printed.delta_cp(), 1.791052120036274e-09, 1e-12));
-        assert!(close(printed.delta_cp() * 0.91 * 0.91, law.delta_cp(), 1e-12));
+        assert!(close(
+            printed.delta_cp() * 0.91 * 0.91,
+            law.delta_cp(),
+            1e-12
+        ));
     }
 
     // docs/derivations/by_hand.py (block "residual_state_of_fig2_cases_by_hand");
@@ -398,16 +416,38 @@ mod tests {
     fn residual_state_of_fig2_cases_by_hand() {
         let law = ru(YieldModulus::Composite);
         let cases = [
-            (17e-9, 6.849380455242463e-09, 2.2974506442240938e-05, 1.2300414100996561e-05, 1.853356270183638e-05),
-            (34e-9, 1.7568107279114872e-08, 4.376268385576789e-05, 1.5759923644545714e-05, 3.943958587730331e-05),
-            (51e-9, 2.926818342698817e-08, 6.455086126929484e-05, 1.8919113649719765e-05, 5.961720573606344e-05),
+            (
+                17e-9,
+                6.849380455242463e-09,
+                2.2974506442240938e-05,
+                1.2300414100996561e-05,
+                1.853356270183638e-05,
+            ),
+            (
+                34e-9,
+                1.7568107279114872e-08,
+                4.376268385576789e-05,
+                1.5759923644545714e-05,
+                3.943958587730331e-05,
+            ),
+            (
+                51e-9,
+                2.926818342698817e-08,
+                6.455086126929484e-05,
+                1.8919113649719765e-05,
+                5.961720573606344e-05,
+            ),
         ];
         for (dmax, dres, rres, r_load, r_mid) in cases {
             let st = law.state(dmax);
             assert!(close(st.delta_res, dres, 1e-12), "{dmax}: {}", st.delta_res);
             assert!(close(st.r_res, rres, 1e-12));
             assert!(close(law.effective_radius(&st, dmax), r_load, 1e-12));
-            assert!(close(law.effective_radius(&st, 0.5 * (dres + dmax)), r_mid, 1e-12));
+            assert!(close(
+                law.effective_radius(&st, 0.5 * (dres + dmax)),
+                r_mid,
+                1e-12
+            ));
             assert!(!st.extrapolated);
         }
     }
@@ -436,7 +476,10 @@ mod tests {
                     let st = law.state(10.0 * dcp * (1.0 + sgn * eps));
                     let dd = st.delta_res + x * (st.delta_max - st.delta_res);
                     let r = law.effective_radius(&st, dd);
-                    assert!((r - r0).abs() <= 50.0 * eps * r0, "x {x} eps {eps}: {r} vs {r0}");
+                    assert!(
+                        (r - r0).abs() <= 50.0 * eps * r0,
+                        "x {x} eps {eps}: {r} vs {r0}"
+                    );
                 }
             }
         }
@@ -452,7 +495,10 @@ mod tests {
             for i in 0..=100 {
                 let x = i as f64 / 100.0;
                 let f = EtsionKadin::shape(c2, x);
-                assert!(f.is_finite() && (0.0..=1.0).contains(&f), "c2 {c2} x {x}: {f}");
+                assert!(
+                    f.is_finite() && (0.0..=1.0).contains(&f),
+                    "c2 {c2} x {x}: {f}"
+                );
                 assert!(f >= prev, "c2 {c2}: not monotone at x {x}");
                 prev = f;
             }
@@ -473,7 +519,10 @@ mod tests {
             ([0.2, 0.6, 0.1], [f64::INFINITY, 10.0, 5.0], "c2[0]"),
         ] {
             let e = EffectiveRadiusFit::new(c1, c2).unwrap_err();
-            assert!(matches!(e, PlasticError::Fit { field: f, .. } if f == field), "{e}");
+            assert!(
+                matches!(e, PlasticError::Fit { field: f, .. } if f == field),
+                "{e}"
+            );
         }
     }
 
@@ -489,7 +538,8 @@ mod tests {
         for modulus in [YieldModulus::Composite, YieldModulus::AsPrinted] {
             let law = EtsionKadin::new(&Pair::new(ru, Some(soft), 4e-6).unwrap(), modulus).unwrap();
             assert_eq!(law.yielding_body(), YieldingBody::Counter);
-            let alone = EtsionKadin::new(&Pair::new(soft, Some(ru), 4e-6).unwrap(), modulus).unwrap();
+            let alone =
+                EtsionKadin::new(&Pair::new(soft, Some(ru), 4e-6).unwrap(), modulus).unwrap();
             assert!(close(law.delta_cp(), alone.delta_cp(), 1e-15));
             assert!(close(law.k_res(), alone.k_res(), 1e-15));
         }
@@ -499,10 +549,17 @@ mod tests {
             ..paper::RU
         })
         .unwrap();
-        let law = EtsionKadin::new(&Pair::new(ru, Some(rigid_like), 4e-6).unwrap(), YieldModulus::AsPrinted).unwrap();
+        let law = EtsionKadin::new(
+            &Pair::new(ru, Some(rigid_like), 4e-6).unwrap(),
+            YieldModulus::AsPrinted,
+        )
+        .unwrap();
         assert_eq!(law.yielding_body(), YieldingBody::Asperity);
         assert!(matches!(
-            EtsionKadin::new(&Pair::new(rigid_like, None, 4e-6).unwrap(), YieldModulus::AsPrinted),
+            EtsionKadin::new(
+                &Pair::new(rigid_like, None, 4e-6).unwrap(),
+                YieldModulus::AsPrinted
+            ),
             Err(PlasticError::NeverYields)
         ));
     }

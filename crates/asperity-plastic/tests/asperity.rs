@@ -17,8 +17,12 @@ fn ru_with(modulus: YieldModulus) -> (EtsionKadin, MaugisKim, Pair) {
     let m = Material::new(paper::RU).unwrap();
     let pair = Pair::new(m, None, paper::RADIUS).unwrap();
     let ek = EtsionKadin::new(&pair, modulus).unwrap();
-    let mk = MaugisKim::new(DugdaleParams::for_pair(&pair, paper::WORK_OF_ADHESION, paper::Z0))
-        .unwrap();
+    let mk = MaugisKim::new(DugdaleParams::for_pair(
+        &pair,
+        paper::WORK_OF_ADHESION,
+        paper::Z0,
+    ))
+    .unwrap();
     (ek, mk, pair)
 }
 
@@ -135,8 +139,14 @@ fn plastic_unloading_is_more_adhesive_than_elastic() {
     // the crate's own search finds the same minimum, never a shallower one
     let p = plastic.pull_off(34e-9).unwrap();
     let e = elastic.pull_off(34e-9).unwrap();
-    assert!(p.force <= fp && p.force > fp * (1.0 + 1e-3), "{p:?} vs dense {fp}");
-    assert!(e.force <= fe && e.force > fe * (1.0 + 1e-3), "{e:?} vs dense {fe}");
+    assert!(
+        p.force <= fp && p.force > fp * (1.0 + 1e-3),
+        "{p:?} vs dense {fp}"
+    );
+    assert!(
+        e.force <= fe && e.force > fe * (1.0 + 1e-3),
+        "{e:?} vs dense {fe}"
+    );
 }
 
 /// Pins a property of the paper's eq 12 as printed (theory 2.5): for delta_max/delta_CP
@@ -152,7 +162,9 @@ fn eq_12_as_printed_overshoots_the_loading_force_beyond_omega_16() {
     let overshoot = |omega: f64| {
         let dmax = omega * dcp;
         let hist = AsperityHistory { delta_max: dmax };
-        let load = asp.force(dmax, AsperityHistory::VIRGIN, Path::Approach).unwrap();
+        let load = asp
+            .force(dmax, AsperityHistory::VIRGIN, Path::Approach)
+            .unwrap();
         let st = asp.plastic_state(hist);
         let peak = (0..=2000)
             .map(|i| st.delta_res + (dmax - st.delta_res) * i as f64 / 2000.0)
@@ -164,7 +176,11 @@ fn eq_12_as_printed_overshoots_the_loading_force_beyond_omega_16() {
     assert!((0.04..0.08).contains(&o23), "omega 22.9: {o23}");
     assert!((0.13..0.19).contains(&o34), "omega 34.4: {o34}");
     for omega in [2.0, 5.0, 10.0, 15.0] {
-        assert!(overshoot(omega) < 1e-9, "omega {omega}: {}", overshoot(omega));
+        assert!(
+            overshoot(omega) < 1e-9,
+            "omega {omega}: {}",
+            overshoot(omega)
+        );
     }
 }
 

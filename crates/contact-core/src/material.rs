@@ -199,7 +199,10 @@ mod tests {
         let ru = Material::new(paper::RU).unwrap();
         assert!(Pair::new(ru, None, 0.0).is_err());
         let msg = m(1e11, 0.7, 1e9).unwrap_err().to_string();
-        assert!(msg.contains("poisson_ratio") && msg.contains("7e-1"), "{msg}");
+        assert!(
+            msg.contains("poisson_ratio") && msg.contains("7e-1"),
+            "{msg}"
+        );
     }
 
     #[test]

@@ -367,7 +367,9 @@ pub fn refine_minima_par<E: From<CoreError> + Send>(
     tol: Tolerance,
 ) -> Result<Minimum, E> {
     let brackets = minimum_brackets::<E>(grid, ys)?;
-    let found = crate::par::map(&brackets, |&bracket| refine_one(what, &mut &f, bracket, tol))?;
+    let found = crate::par::map(&brackets, |&bracket| {
+        refine_one(what, &mut &f, bracket, tol)
+    })?;
     Ok(lowest(found))
 }
 
@@ -439,7 +441,13 @@ pub fn linspace(
     n: usize,
 ) -> impl DoubleEndedIterator<Item = f64> + ExactSizeIterator + Clone {
     let step = if n > 1 { (b - a) / (n - 1) as f64 } else { 0.0 };
-    (0..n).map(move |i| if i + 1 == n && n > 1 { b } else { a + step * i as f64 })
+    (0..n).map(move |i| {
+        if i + 1 == n && n > 1 {
+            b
+        } else {
+            a + step * i as f64
+        }
+    })
 }
 
 /// `n` geometrically spaced points from `a` to `b` inclusive (both > 0).
@@ -510,10 +518,7 @@ impl AdaptiveRule {
             });
         }
         let gl = GaussLegendre::new(nodes);
-        let halves: Vec<(f64, f64)> = gl
-            .mapped(-1.0, 0.0)
-            .chain(gl.mapped(0.0, 1.0))
-            .collect();
+        let halves: Vec<(f64, f64)> = gl.mapped(-1.0, 0.0).chain(gl.mapped(0.0, 1.0)).collect();
         // the Lagrange basis of the n nodes on [-1, 1] at -1 and +1 (the ends of a half)
         let xs: Vec<f64> = gl.mapped(-1.0, 1.0).map(|p| p.0).collect();
         let basis = |t: f64| -> Vec<f64> {
@@ -751,10 +756,17 @@ pub fn integrate_panels<E: From<CoreError>>(
     rule: &AdaptiveRule,
     tol: QuadTolerance,
 ) -> Result<(Integral, Vec<PanelNodes>), E> {
-    let map = Substitution { breaks, edge_substitution };
+    let map = Substitution {
+        breaks,
+        edge_substitution,
+    };
     integrate_core(
         what,
-        &mut |pts: &[(usize, f64)]| pts.iter().map(|&(k, t)| map.eval(what, &mut f, k, t)).collect(),
+        &mut |pts: &[(usize, f64)]| {
+            pts.iter()
+                .map(|&(k, t)| map.eval(what, &mut f, k, t))
+                .collect()
+        },
         map,
         rule,
         tol,
@@ -775,7 +787,10 @@ pub fn integrate_panels_par<E: From<CoreError> + Send>(
     rule: &AdaptiveRule,
     tol: QuadTolerance,
 ) -> Result<(Integral, Vec<PanelNodes>), E> {
-    let map = Substitution { breaks, edge_substitution };
+    let map = Substitution {
+        breaks,
+        edge_substitution,
+    };
     integrate_core(
         what,
         &mut |pts: &[(usize, f64)]| crate::par::map(pts, |&(k, t)| map.eval(what, &mut &f, k, t)),
@@ -820,7 +835,10 @@ impl Substitution<'_> {
 /// the midpoint.
 fn split_nodes(rule: &AdaptiveRule, (a, b): (f64, f64)) -> impl Iterator<Item = f64> + '_ {
     let (c, m) = (0.5 * (b - a), 0.5 * (a + b));
-    rule.halves.iter().map(move |&(x, _)| m + c * x).chain(std::iter::once(m))
+    rule.halves
+        .iter()
+        .map(move |&(x, _)| m + c * x)
+        .chain(std::iter::once(m))
 }
 
 /// A panel of interval k on [a, b] from the integrand at its ends, the whole-panel rule's
@@ -852,7 +870,9 @@ fn panel(
     // (a smooth integrand's own extrapolation error is discounted: the extrapolations
     // through n and through n - 1 nodes differ by about that much, while a hidden
     // feature, seen by no node, moves neither)
-    let size = ys.iter().fold(fa.abs().max(fb.abs()), |s, y| s.max(y.abs()));
+    let size = ys
+        .iter()
+        .fold(fa.abs().max(fb.abs()), |s, y| s.max(y.abs()));
     let noise = 2.0 * rule.gain * noise * size;
     let dot = |basis: &[f64], y: &[f64]| basis.iter().zip(y).map(|(p, y)| p * y).sum::<f64>();
     let signal = |full: &[f64], low: &[f64], y: &[f64], f_end: f64| {
@@ -956,8 +976,21 @@ fn integrate_core<E: From<CoreError>>(
         .zip(inner_values.chunks(per_piece))
         .map(|((&(k, a, b), &e), ys)| {
             let n = rule.gl.len();
-            let whole: f64 = rule.gl.mapped(a, b).zip(&ys[..n]).map(|((_, w), y)| w * y).sum();
-            panel(rule, k, (a, b), (end_values[e], end_values[e + 1]), whole, &ys[n..], noise)
+            let whole: f64 = rule
+                .gl
+                .mapped(a, b)
+                .zip(&ys[..n])
+                .map(|((_, w), y)| w * y)
+                .sum();
+            panel(
+                rule,
+                k,
+                (a, b),
+                (end_values[e], end_values[e + 1]),
+                whole,
+                &ys[n..],
+                noise,
+            )
         })
         .collect();
     // Noise floor: no estimate is trusted below the integrand's noise; a target below the
@@ -970,18 +1003,19 @@ fn integrate_core<E: From<CoreError>>(
         .map(|(i, p)| (Key(error_of(p)), i))
         .collect();
     let mut alive = vec![true; panels.len()];
-    let (mut abs, mut error, mut value_now) = panels
-        .iter()
-        .fold((0.0, 0.0, 0.0), |s, p| (s.0 + p.abs, s.1 + error_of(p), s.2 + p.left + p.right));
+    let (mut abs, mut error, mut value_now) = panels.iter().fold((0.0, 0.0, 0.0), |s, p| {
+        (s.0 + p.abs, s.1 + error_of(p), s.2 + p.left + p.right)
+    });
     loop {
         let target = (tol.rel * value_now.abs())
             .max(tol.rel_of_abs * abs)
             .max(tol.abs)
             .max(2.0 * floor_rel * abs);
-        let stagnated = heap.len() >= tol.max_panels || heap.peek().is_some_and(|&(_, i)| {
-            let m = 0.5 * (panels[i].a + panels[i].b);
-            !(m > panels[i].a && m < panels[i].b)
-        });
+        let stagnated = heap.len() >= tol.max_panels
+            || heap.peek().is_some_and(|&(_, i)| {
+                let m = 0.5 * (panels[i].a + panels[i].b);
+                !(m > panels[i].a && m < panels[i].b)
+            });
         if stagnated && error > STAGNATION_ALLOWANCE * target {
             return Err(CoreError::Quadrature {
                 what,
@@ -999,16 +1033,21 @@ fn integrate_core<E: From<CoreError>>(
                 .map(|(p, _)| p)
                 .collect();
             live.sort_by(|p, q| p.k.cmp(&q.k).then(p.a.total_cmp(&q.a)));
-            let (value, error) = live
-                .iter()
-                .fold((0.0, 0.0), |s, p| (s.0 + p.left + p.right, s.1 + error_of(p)));
+            let (value, error) = live.iter().fold((0.0, 0.0), |s, p| {
+                (s.0 + p.left + p.right, s.1 + error_of(p))
+            });
             let nodes = live
                 .iter()
                 .map(|p| {
                     let (c, m) = (0.5 * (p.b - p.a), 0.5 * (p.a + p.b));
                     let mut points = Vec::with_capacity(p.ys.len() + 2);
                     points.push((p.a, p.fa));
-                    points.extend(rule.halves.iter().zip(&p.ys).map(|(&(x, _), &y)| (m + c * x, y)));
+                    points.extend(
+                        rule.halves
+                            .iter()
+                            .zip(&p.ys)
+                            .map(|(&(x, _), &y)| (m + c * x, y)),
+                    );
                     points.push((p.b, p.fb));
                     PanelNodes {
                         a: p.a,
@@ -1177,14 +1216,27 @@ mod tests {
         )
         .unwrap_err();
         assert!(matches!(e, CoreError::NotFinite { what: "inner", .. }));
-        let e = brent("nan", |x| R::Ok(if x > 0.1 { f64::NAN } else { -1.0 }), 0.0, 1.0, Tolerance::ROOT)
-            .unwrap_err();
+        let e = brent(
+            "nan",
+            |x| R::Ok(if x > 0.1 { f64::NAN } else { -1.0 }),
+            0.0,
+            1.0,
+            Tolerance::ROOT,
+        )
+        .unwrap_err();
         assert!(matches!(e, CoreError::NotFinite { what: "nan", .. }));
     }
 
     #[test]
     fn brent_meets_an_absolute_tolerance_and_its_iteration_cap() {
-        let r = brent("lin", |x| R::Ok(x - 0.3), -1.0, 1.0, Tolerance::absolute(1e-3)).unwrap();
+        let r = brent(
+            "lin",
+            |x| R::Ok(x - 0.3),
+            -1.0,
+            1.0,
+            Tolerance::absolute(1e-3),
+        )
+        .unwrap();
         assert!((r - 0.3).abs() <= 1e-3);
         let e = brent(
             "cap",
@@ -1265,10 +1317,21 @@ mod tests {
         let rule = AdaptiveRule::new(6).unwrap();
         let exact = (2.0 * std::f64::consts::PI).sqrt() * 0.5 * (1.0 + erf_ref(3.0 / 2f64.sqrt()));
         for rel in [1e-4, 1e-8, 1e-12] {
-            let r = integrate("gauss", |x| R::Ok((-0.5 * x * x).exp()), &[-12.0, 3.0], false, &rule, tol(rel))
-                .unwrap();
+            let r = integrate(
+                "gauss",
+                |x| R::Ok((-0.5 * x * x).exp()),
+                &[-12.0, 3.0],
+                false,
+                &rule,
+                tol(rel),
+            )
+            .unwrap();
             let err = (r.value - exact).abs();
-            assert!(err <= r.error.max(1e-15 * exact), "rel {rel}: err {err:e} > estimate {:e}", r.error);
+            assert!(
+                err <= r.error.max(1e-15 * exact),
+                "rel {rel}: err {err:e} > estimate {:e}",
+                r.error
+            );
             assert!(err <= rel * exact, "rel {rel}: err {err:e}");
         }
     }
@@ -1277,11 +1340,36 @@ mod tests {
     fn edge_substitution_resolves_square_root_and_hertz_edges() {
         let rule = AdaptiveRule::new(6).unwrap();
         for (p, exact) in [(0.5, 2.0 / 3.0), (1.5, 0.4)] {
-            let plain = integrate("edge", |x: f64| R::Ok(x.powf(p)), &[0.0, 1.0], false, &rule, tol(1e-12)).unwrap();
-            let sub = integrate("edge", |x: f64| R::Ok(x.powf(p)), &[0.0, 1.0], true, &rule, tol(1e-12)).unwrap();
+            let plain = integrate(
+                "edge",
+                |x: f64| R::Ok(x.powf(p)),
+                &[0.0, 1.0],
+                false,
+                &rule,
+                tol(1e-12),
+            )
+            .unwrap();
+            let sub = integrate(
+                "edge",
+                |x: f64| R::Ok(x.powf(p)),
+                &[0.0, 1.0],
+                true,
+                &rule,
+                tol(1e-12),
+            )
+            .unwrap();
             assert!((sub.value - exact).abs() < 1e-14, "p {p}: {}", sub.value);
-            assert!((plain.value - exact).abs() < 1e-11, "p {p}: {}", plain.value);
-            assert!(sub.evaluations < plain.evaluations, "p {p}: {} vs {}", sub.evaluations, plain.evaluations);
+            assert!(
+                (plain.value - exact).abs() < 1e-11,
+                "p {p}: {}",
+                plain.value
+            );
+            assert!(
+                sub.evaluations < plain.evaluations,
+                "p {p}: {} vs {}",
+                sub.evaluations,
+                plain.evaluations
+            );
         }
     }
 
@@ -1291,7 +1379,15 @@ mod tests {
         let rule = AdaptiveRule::new(6).unwrap();
         let k = 0.3137;
         let exact = 0.5 * (k * k + (1.0 - k) * (1.0 - k));
-        let r = integrate("kink", |x: f64| R::Ok((x - k).abs()), &[0.0, 1.0], false, &rule, tol(1e-12)).unwrap();
+        let r = integrate(
+            "kink",
+            |x: f64| R::Ok((x - k).abs()),
+            &[0.0, 1.0],
+            false,
+            &rule,
+            tol(1e-12),
+        )
+        .unwrap();
         assert!((r.value - exact).abs() < 1e-12, "{} vs {exact}", r.value);
     }
 
@@ -1305,13 +1401,35 @@ mod tests {
                 for j in 0..500 {
                     let k = 0.0005 + 0.999 * (j as f64 * 0.618_033_988_749_894_9).fract();
                     let kink = 0.5 * (k * k + (1.0 - k) * (1.0 - k));
-                    let r = integrate("kink", |x: f64| R::Ok((x - k).abs()), &[0.0, 1.0], false, &rule, tol(rel))
-                        .unwrap();
-                    assert!((r.value - kink).abs() <= rel * kink, "n {n} rel {rel} kink at {k}: {}", r.value);
+                    let r = integrate(
+                        "kink",
+                        |x: f64| R::Ok((x - k).abs()),
+                        &[0.0, 1.0],
+                        false,
+                        &rule,
+                        tol(rel),
+                    )
+                    .unwrap();
+                    assert!(
+                        (r.value - kink).abs() <= rel * kink,
+                        "n {n} rel {rel} kink at {k}: {}",
+                        r.value
+                    );
                     let step = 1.0 - 0.5 * k;
-                    let r = integrate("step", |x: f64| R::Ok(if x > k { 1.0 } else { 0.5 }), &[0.0, 1.0], false, &rule, tol(rel))
-                        .unwrap();
-                    assert!((r.value - step).abs() <= rel * step, "n {n} rel {rel} step at {k}: {}", r.value);
+                    let r = integrate(
+                        "step",
+                        |x: f64| R::Ok(if x > k { 1.0 } else { 0.5 }),
+                        &[0.0, 1.0],
+                        false,
+                        &rule,
+                        tol(rel),
+                    )
+                    .unwrap();
+                    assert!(
+                        (r.value - step).abs() <= rel * step,
+                        "n {n} rel {rel} step at {k}: {}",
+                        r.value
+                    );
                 }
             }
         }
@@ -1321,8 +1439,15 @@ mod tests {
     fn a_tolerance_below_rounding_is_raised_to_the_rounding_floor() {
         let rule = AdaptiveRule::new(6).unwrap();
         let exact = (2.0 * std::f64::consts::PI).sqrt();
-        let r = integrate("gauss", |x: f64| R::Ok((-0.5 * x * x).exp()), &[-12.0, 12.0], false, &rule, tol(1e-30))
-            .unwrap();
+        let r = integrate(
+            "gauss",
+            |x: f64| R::Ok((-0.5 * x * x).exp()),
+            &[-12.0, 12.0],
+            false,
+            &rule,
+            tol(1e-30),
+        )
+        .unwrap();
         assert!((r.value - exact).abs() < 1e-14 * exact);
         // the estimate stops at the rounding floor of the end extrapolation
         assert!(r.error < 1e-10 * exact && r.evaluations < 2000, "{r:?}");
@@ -1333,11 +1458,25 @@ mod tests {
         let rule = AdaptiveRule::new(4).unwrap();
         let mut t = tol(1e-14);
         t.max_panels = 4;
-        let e = integrate("wild", |x: f64| R::Ok((50.0 * x).sin().abs()), &[0.0, 10.0], false, &rule, t)
-            .unwrap_err();
+        let e = integrate(
+            "wild",
+            |x: f64| R::Ok((50.0 * x).sin().abs()),
+            &[0.0, 10.0],
+            false,
+            &rule,
+            t,
+        )
+        .unwrap_err();
         assert!(matches!(e, CoreError::Quadrature { .. }));
-        let e = integrate("nan", |x: f64| R::Ok(if x > 0.5 { f64::NAN } else { x }), &[0.0, 1.0], false, &rule, tol(1e-6))
-            .unwrap_err();
+        let e = integrate(
+            "nan",
+            |x: f64| R::Ok(if x > 0.5 { f64::NAN } else { x }),
+            &[0.0, 1.0],
+            false,
+            &rule,
+            tol(1e-6),
+        )
+        .unwrap_err();
         assert!(matches!(e, CoreError::NotFinite { what: "nan", .. }));
     }
 

@@ -29,12 +29,18 @@ pub fn map<T: Sync, R: Send, E: Send>(
 
 /// Both closures, in parallel with the `parallel` feature.
 #[cfg(feature = "parallel")]
-pub fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+pub fn join<A: Send, B: Send>(
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
     rayon::join(a, b)
 }
 
 /// Both closures, one after the other.
 #[cfg(not(feature = "parallel"))]
-pub fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+pub fn join<A: Send, B: Send>(
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
     (a(), b())
 }

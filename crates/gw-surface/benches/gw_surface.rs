@@ -15,7 +15,12 @@ fn bench(c: &mut Criterion) {
     let pair = Pair::new(m, Some(m), paper::RADIUS).unwrap();
     let asp = ElastoPlasticAsperity::new(
         EtsionKadin::new(&pair, YieldModulus::AsPrinted).unwrap(),
-        MaugisKim::new(DugdaleParams::for_pair(&pair, paper::WORK_OF_ADHESION, paper::Z0)).unwrap(),
+        MaugisKim::new(DugdaleParams::for_pair(
+            &pair,
+            paper::WORK_OF_ADHESION,
+            paper::Z0,
+        ))
+        .unwrap(),
     );
     let hist = GwHistory::Flat {
         deepest: 1.25 * SIGMA,
@@ -40,7 +45,10 @@ fn bench(c: &mut Criterion) {
         g.bench_function(format!("200 points rel {name}"), |b| {
             b.iter(|| {
                 (0..200)
-                    .map(|i| gw.pressure(1.25 * SIGMA + 8.0 * SIGMA * i as f64 / 199.0, &hist, path).unwrap())
+                    .map(|i| {
+                        gw.pressure(1.25 * SIGMA + 8.0 * SIGMA * i as f64 / 199.0, &hist, path)
+                            .unwrap()
+                    })
                     .sum::<f64>()
             })
         });

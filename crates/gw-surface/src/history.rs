@@ -1,4 +1,3 @@
-
 /// What a surface remembers: the largest interference delta_max(h) each asperity of
 /// initial height h has reached.
 #[derive(Debug, Clone, PartialEq)]

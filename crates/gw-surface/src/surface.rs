@@ -1,6 +1,8 @@
 use crate::error::GwError;
 use crate::history::GwHistory;
-use contact_core::numeric::{brent_from, integrate, AdaptiveRule, Integral, QuadTolerance, Sample, Tolerance, NOISE};
+use contact_core::numeric::{
+    brent_from, integrate, AdaptiveRule, Integral, QuadTolerance, Sample, Tolerance, NOISE,
+};
 use contact_core::{
     positive, AsperityHistory, AsperityModel, CoreError, Estimate, LawError, LengthScales, Path,
     SurfaceLaw,
@@ -236,8 +238,11 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         let f = self.law(
             h,
             d,
-            self.asperity
-                .force(h - d, self.history_at(history, h), Self::asperity_path(h, path)),
+            self.asperity.force(
+                h - d,
+                self.history_at(history, h),
+                Self::asperity_path(h, path),
+            ),
         )?;
         if f.is_finite() {
             Ok(f)
@@ -364,7 +369,14 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         path: Path,
         from_height: Option<f64>,
     ) -> Result<Integral, GwError> {
-        self.integral_with(d, history, path, from_height, &self.rule, self.quadrature.rel_tol)
+        self.integral_with(
+            d,
+            history,
+            path,
+            from_height,
+            &self.rule,
+            self.quadrature.rel_tol,
+        )
     }
 
     fn integral_with(
@@ -414,7 +426,9 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         // integrand in u = h/sigma_s: F(sigma u - d) phi(u)
         let r = integrate(
             "height integral",
-            |u: f64| Ok::<_, GwError>(self.force_at(sigma * u, d, history, path)? * self.normal.pdf(u)),
+            |u: f64| {
+                Ok::<_, GwError>(self.force_at(sigma * u, d, history, path)? * self.normal.pdf(u))
+            },
             &us,
             edge_panel,
             rule,
@@ -452,7 +466,12 @@ impl<M: AsperityModel + Sync> SurfaceLaw for GreenwoodWilliamson<M> {
 
     /// p(d) = N integral F(h - d; delta_max(h), path) phi(h) dh (eq 16, in SI), with the
     /// quadrature's error estimate.
-    fn pressure_estimate(&self, d: f64, history: &GwHistory, path: Path) -> Result<Estimate, LawError> {
+    fn pressure_estimate(
+        &self,
+        d: f64,
+        history: &GwHistory,
+        path: Path,
+    ) -> Result<Estimate, LawError> {
         let r = self.integral(d, history, path, None)?;
         Ok(Estimate {
             value: r.value,
@@ -463,7 +482,9 @@ impl<M: AsperityModel + Sync> SurfaceLaw for GreenwoodWilliamson<M> {
     /// The pressure with a coarse quadrature (1e-3 relative, 4 nodes), about a third of
     /// the cost of a 1e-10 evaluation.
     fn pressure_scan(&self, d: f64, history: &GwHistory, path: Path) -> Result<f64, LawError> {
-        Ok(self.integral_with(d, history, path, None, &self.scan_rule, SCAN_TOLERANCE)?.value)
+        Ok(self
+            .integral_with(d, history, path, None, &self.scan_rule, SCAN_TOLERANCE)?
+            .value)
     }
 
     fn load(&self, history: &GwHistory, d: f64) -> GwHistory {

@@ -131,8 +131,15 @@ fn every_tolerance_is_met_and_its_error_estimate_is_honest() {
             let r = gw.pressure_integral(d, &hist, path).unwrap();
             let err = (r.value - exact.value).abs();
             // the target is relative to the sum of |forces|, which is at least |pressure|
-            assert!(err <= r.error + 2.0 * exact.error, "rel {rel} d {d} {path:?}: err {err:e} > estimate {:e}", r.error);
-            assert!(err <= rel * exact.value.abs().max(1e-300) * 50.0 || err <= r.error, "rel {rel} d {d}");
+            assert!(
+                err <= r.error + 2.0 * exact.error,
+                "rel {rel} d {d} {path:?}: err {err:e} > estimate {:e}",
+                r.error
+            );
+            assert!(
+                err <= rel * exact.value.abs().max(1e-300) * 50.0 || err <= r.error,
+                "rel {rel} d {d}"
+            );
         }
     }
 }
@@ -155,13 +162,18 @@ fn a_law_that_declares_no_kinks_is_integrated_to_the_same_tolerance() {
     let pair = ru_pair();
     let dmt = Dmt::new(dugdale(&pair)).unwrap();
     let ek = EtsionKadin::new(&pair, YieldModulus::AsPrinted).unwrap();
-    let declared = GreenwoodWilliamson::new(ElastoPlasticAsperity::new(ek, dmt), ROUGH, q(1e-13)).unwrap();
+    let declared =
+        GreenwoodWilliamson::new(ElastoPlasticAsperity::new(ek, dmt), ROUGH, q(1e-13)).unwrap();
     let hist = GwHistory::Flat {
         deepest: 0.5 * SIGMA,
     };
     for rel in [1e-6, 1e-10] {
-        let silent =
-            GreenwoodWilliamson::new(ElastoPlasticAsperity::new(ek, SilentDmt(dmt)), ROUGH, q(rel)).unwrap();
+        let silent = GreenwoodWilliamson::new(
+            ElastoPlasticAsperity::new(ek, SilentDmt(dmt)),
+            ROUGH,
+            q(rel),
+        )
+        .unwrap();
         for (d, path) in cases() {
             let a = declared.pressure(d, &hist, path).unwrap();
             let b = silent.pressure_integral(d, &hist, path).unwrap();
@@ -234,9 +246,14 @@ fn reaches_bound_where_the_pressure_vanishes_on_each_path() {
     let gw = ru_surface(Quadrature::default());
     let hist = gw.load(&gw.virgin(), 0.5 * SIGMA);
     let approach = gw.reach(&hist, Path::Approach).unwrap();
-    let retract = gw.reach(&hist, Path::Retract { from: 0.5 * SIGMA }).unwrap();
+    let retract = gw
+        .reach(&hist, Path::Retract { from: 0.5 * SIGMA })
+        .unwrap();
     assert!(retract >= approach);
-    for (top, path) in [(approach, Path::Approach), (retract, Path::Retract { from: 0.5 * SIGMA })] {
+    for (top, path) in [
+        (approach, Path::Approach),
+        (retract, Path::Retract { from: 0.5 * SIGMA }),
+    ] {
         assert_eq!(gw.pressure(top * 1.0001, &hist, path).unwrap(), 0.0);
     }
     let s = gw.length_scales(&hist).unwrap();
@@ -274,9 +291,14 @@ fn load_share_beyond_counts_force_not_asperities() {
     assert!((all - 1.0).abs() < 1e-9, "{all}");
     // the deepest asperities carry more than their count: share > count fraction
     let ratio = 5.0;
-    let share = gw.load_share_beyond(d, &hist, Path::Approach, ratio).unwrap();
-    let count = gw.fraction_beyond(&hist.loaded(d), ratio)
-        / gw.fraction_beyond(&hist.loaded(d), 0.0);
+    let share = gw
+        .load_share_beyond(d, &hist, Path::Approach, ratio)
+        .unwrap();
+    let count =
+        gw.fraction_beyond(&hist.loaded(d), ratio) / gw.fraction_beyond(&hist.loaded(d), 0.0);
     assert!(share > count && share < 1.0, "share {share} count {count}");
-    assert_eq!(gw.load_share_beyond(d, &hist, Path::Approach, 1e6).unwrap(), 0.0);
+    assert_eq!(
+        gw.load_share_beyond(d, &hist, Path::Approach, 1e6).unwrap(),
+        0.0
+    );
 }

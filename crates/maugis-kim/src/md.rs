@@ -16,8 +16,8 @@
 
 use crate::error::MkError;
 use contact_core::numeric::{brent_from, Sample, Tolerance};
-use contact_core::{finite, positive, CoreError};
 use contact_core::Path;
+use contact_core::{finite, positive, CoreError};
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
@@ -123,7 +123,11 @@ impl Contact {
     fn at(lambda: f64, s: f64) -> Self {
         let t = s.atan();
         // sqrt(1 + s^2) to an ulp or two, cheaper than hypot; hypot where s^2 overflows
-        let m = if s < 1e150 { (1.0 + s * s).sqrt() } else { s.hypot(1.0) };
+        let m = if s < 1e150 {
+            (1.0 + s * s).sqrt()
+        } else {
+            s.hypot(1.0)
+        };
         let s_over = s / (1.0 + m); // (m - 1)/s, no overflow
                                     // g1 = s + (m^2 - 2) t = (s - t) + s^2 t
         let g1 = s_minus_atan(s) + s * s * t;
@@ -177,7 +181,8 @@ impl Contact {
         let da = -a * (dp * a + dq) / (2.0 * p * a + q);
         let g3 = s + m * m * t;
         let d_delta = 2.0 * a * da - 4.0 / 3.0 * lambda * (da * s + a);
-        let d_force = 2.0 * a * da * (a - lambda * g3) + a * a * (da - lambda * (2.0 + 2.0 * s * t));
+        let d_force =
+            2.0 * a * da * (a - lambda * g3) + a * a * (da - lambda * (2.0 + 2.0 * s * t));
         let dc = s / m * a + m * da;
         // d/du = s d/ds
         let h = s * du;
@@ -399,7 +404,9 @@ impl MdCurve {
         if delta < turning.point.delta {
             // within rounding of the turning point (at extreme lambda the jump-in and the
             // turning point differ by less than a few ulps): the turning point itself
-            if turning.point.delta - delta <= 16.0 * f64::EPSILON * turning.point.delta.abs().max(1.0) {
+            if turning.point.delta - delta
+                <= 16.0 * f64::EPSILON * turning.point.delta.abs().max(1.0)
+            {
                 return Ok(turning.point);
             }
             return Err(MkError::BelowTurningPoint {

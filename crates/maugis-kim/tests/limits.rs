@@ -6,7 +6,9 @@ use std::f64::consts::PI;
 
 /// K = 4/3 E* of the Ru sphere of Table 1 on a rigid flat.
 fn ru_on_rigid_k() -> f64 {
-    Pair::new(Material::new(paper::RU).unwrap(), None, paper::RADIUS).unwrap().k()
+    Pair::new(Material::new(paper::RU).unwrap(), None, paper::RADIUS)
+        .unwrap()
+        .k()
 }
 
 /// Residuals of eqs 8-10 for a contact point, each relative to the size of its terms.
@@ -166,8 +168,18 @@ fn dmt_law_agrees_with_maugis_kim_at_small_lambda_in_si() {
     let k = ru_on_rigid_k();
     let (w, r) = (paper::WORK_OF_ADHESION, paper::RADIUS);
     let worst = |z0: f64| {
-        let mk = MaugisKim::new(DugdaleParams { k, work_of_adhesion: w, z0 }).unwrap();
-        let dmt = Dmt::new(DugdaleParams { k, work_of_adhesion: w, z0 }).unwrap();
+        let mk = MaugisKim::new(DugdaleParams {
+            k,
+            work_of_adhesion: w,
+            z0,
+        })
+        .unwrap();
+        let dmt = Dmt::new(DugdaleParams {
+            k,
+            work_of_adhesion: w,
+            z0,
+        })
+        .unwrap();
         let mut e: f64 = 0.0;
         for frac in [-0.8, -0.3, -0.05, 0.0] {
             let delta = frac * z0;
@@ -222,7 +234,12 @@ fn path_rule_jump_in_and_jump_out() {
 #[test]
 fn si_law_matches_nondimensional_curve() {
     let k = ru_on_rigid_k();
-    let mk = MaugisKim::new(DugdaleParams { k, work_of_adhesion: paper::WORK_OF_ADHESION, z0: paper::Z0 }).unwrap();
+    let mk = MaugisKim::new(DugdaleParams {
+        k,
+        work_of_adhesion: paper::WORK_OF_ADHESION,
+        z0: paper::Z0,
+    })
+    .unwrap();
     let r = paper::RADIUS;
     let sc = mk.scales(r).unwrap();
     let c = mk.curve(r).unwrap();
@@ -241,7 +258,12 @@ fn nan_inputs_are_errors_not_zero_forces() {
     assert!(c.curve(10, f64::NAN).is_err());
     assert!(Jkr::force_nd(f64::NAN, Path::Approach).is_err());
     assert!(MdCurve::new(f64::NAN).is_err() && MdCurve::new(-1.0).is_err());
-    let mk = MaugisKim::new(DugdaleParams { k: 3e11, work_of_adhesion: 1.0, z0: 1e-10 }).unwrap();
+    let mk = MaugisKim::new(DugdaleParams {
+        k: 3e11,
+        work_of_adhesion: 1.0,
+        z0: 1e-10,
+    })
+    .unwrap();
     assert!(mk.force(4e-6, f64::NAN, Path::Approach).is_err());
     assert!(mk.force(f64::NAN, 1e-9, Path::Approach).is_err());
 }

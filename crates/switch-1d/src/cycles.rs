@@ -90,7 +90,9 @@ struct Approach<'a, S: SurfaceLaw> {
 
 impl<S: SurfaceLaw> Approach<'_, S> {
     fn p(&self, d: f64) -> Result<f64, SwitchError> {
-        let e = self.surface.pressure_estimate(d, self.history, Path::Approach)?;
+        let e = self
+            .surface
+            .pressure_estimate(d, self.history, Path::Approach)?;
         // a poisoned lock only follows a panic elsewhere; the list is still whole
         self.errors
             .lock()
@@ -104,10 +106,7 @@ impl<S: SurfaceLaw> Approach<'_, S> {
     fn error_integral(&mut self, lo: f64, hi: f64) -> f64 {
         let errors = self.errors.get_mut().unwrap_or_else(|e| e.into_inner());
         errors.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        let inside: Vec<&(f64, f64)> = errors
-            .iter()
-            .filter(|e| e.0 >= lo && e.0 <= hi)
-            .collect();
+        let inside: Vec<&(f64, f64)> = errors.iter().filter(|e| e.0 >= lo && e.0 <= hi).collect();
         let trapezoid: f64 = inside
             .windows(2)
             .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
@@ -158,7 +157,13 @@ fn end_of_impact_near<S: SurfaceLaw>(
     let scales = surface.length_scales(history)?;
     let target = precision.d_e * scales.roughness;
     let mut tighten = 1.0;
-    let balance = Balance { energy: impact_energy, film, precision, scales, guess };
+    let balance = Balance {
+        energy: impact_energy,
+        film,
+        precision,
+        scales,
+        guess,
+    };
     let solve = |tighten| solve_eq17(surface, history, &balance, tighten);
     let mut end = solve(tighten)?;
     // the energy tolerance assumed a typical depth below the first touch: tighten by what
@@ -188,7 +193,13 @@ fn solve_eq17<S: SurfaceLaw>(
     balance: &Balance,
     tighten: f64,
 ) -> Result<EndOfImpact, SwitchError> {
-    let Balance { energy, film, precision, scales, guess } = *balance;
+    let Balance {
+        energy,
+        film,
+        precision,
+        scales,
+        guess,
+    } = *balance;
     let sigma = scales.roughness;
     let top = surface.reach(history, Path::Approach)?;
     let tol_d = precision.d_e * sigma;
@@ -214,7 +225,14 @@ fn solve_eq17<S: SurfaceLaw>(
         let mut breaks = vec![lo];
         breaks.extend(kinks.iter().rev().filter(|&&k| k > lo && k < hi));
         breaks.push(hi);
-        integrate_panels_par("eq 17 energy integral", |x| ap.p(x), &breaks, false, &rule, quad)
+        integrate_panels_par(
+            "eq 17 energy integral",
+            |x| ap.p(x),
+            &breaks,
+            false,
+            &rule,
+            quad,
+        )
     };
     let mut hi = top;
     let mut work = 0.0; // integral of p_L from hi to top
@@ -274,7 +292,9 @@ fn solve_eq17<S: SurfaceLaw>(
         } else {
             f64::INFINITY
         };
-        step = (2.0 * step).min(remaining.max(0.25 * sigma)).min(64.0 * sigma);
+        step = (2.0 * step)
+            .min(remaining.max(0.25 * sigma))
+            .min(64.0 * sigma);
     }
     Err(SwitchError::EnergyNotAbsorbed {
         energy,
@@ -615,8 +635,14 @@ pub fn run_cycles<S: SurfaceLaw>(
             }
             prev => {
                 let guess = prev.map(|c| c.end.d_e);
-                let end =
-                    end_of_impact_near(surface, &hist, energy, impact.film, options.precision, guess)?;
+                let end = end_of_impact_near(
+                    surface,
+                    &hist,
+                    energy,
+                    impact.film,
+                    options.precision,
+                    guess,
+                )?;
                 let new_hist = surface.load(&hist, end.d_e);
                 let unloading = unload(
                     surface,

@@ -165,7 +165,8 @@ mod tests {
         let k = 1e10;
         let u = s.dynamic_pull_in_voltage(k);
         let g = s.effective_gap();
-        let w = |u: f64, y: f64| 0.5 * paper::EPSILON_0 * u * u * y / (g * (g - y)) - 0.5 * k * y * y;
+        let w =
+            |u: f64, y: f64| 0.5 * paper::EPSILON_0 * u * u * y / (g * (g - y)) - 0.5 * k * y * y;
         // at U_dyn the work is >= 0 on [0, d0] and touches 0 (at y = g/2); just below it dips
         let ys: Vec<f64> = (1..=1000).map(|i| paper::D0 * i as f64 / 1000.0).collect();
         let min_at = |u: f64| ys.iter().map(|&y| w(u, y)).fold(f64::INFINITY, f64::min);
@@ -175,11 +176,22 @@ mod tests {
         // and the ratio to the static pull-in is sqrt(27/32) = 0.9186 (d0 > g/2 here)
         assert!((u / s.pull_in_voltage(k) - (27.0f64 / 32.0).sqrt()).abs() < 1e-12);
         // a thick dielectric (d0 < g/2): the maximum of y (g - y) sits at y = d0
-        let thick = Switch::new(SwitchGeometry { d0: 1e-6, t_d: 3e-6, epsilon_r: 1.0, epsilon_0: paper::EPSILON_0 }).unwrap();
+        let thick = Switch::new(SwitchGeometry {
+            d0: 1e-6,
+            t_d: 3e-6,
+            epsilon_r: 1.0,
+            epsilon_0: paper::EPSILON_0,
+        })
+        .unwrap();
         let g = thick.effective_gap();
         let expect = (k * g * 1e-6 * (g - 1e-6) / paper::EPSILON_0).sqrt();
         assert!((thick.dynamic_pull_in_voltage(k) / expect - 1.0).abs() < 1e-14);
-        assert!(thick.impact_energy(k, thick.dynamic_pull_in_voltage(k)).abs() < 1e-9);
+        assert!(
+            thick
+                .impact_energy(k, thick.dynamic_pull_in_voltage(k))
+                .abs()
+                < 1e-9
+        );
     }
 
     #[test]
@@ -192,7 +204,11 @@ mod tests {
     fn rejects_bad_geometry() {
         let g = table2().geometry();
         assert!(Switch::new(SwitchGeometry { d0: -2e-6, ..g }).is_err());
-        assert!(Switch::new(SwitchGeometry { epsilon_r: 0.5, ..g }).is_err());
+        assert!(Switch::new(SwitchGeometry {
+            epsilon_r: 0.5,
+            ..g
+        })
+        .is_err());
         assert!(Switch::new(SwitchGeometry { t_d: f64::NAN, ..g }).is_err());
         assert!(table2().stiffness_for_impact_energy(-1.0).is_err());
     }

@@ -5,8 +5,7 @@ use contact_core::{paper, AdhesionLaw, Material, Pair, Path, PlasticityLaw, Surf
 use gw_surface::{GreenwoodWilliamson, GwHistory, Quadrature, Roughness};
 use maugis_kim::{DugdaleParams, Jkr, JkrParams, MaugisKim};
 use switch_1d::{
-    end_of_impact, eq17_residual, run_cycles, unload, CycleOptions, Impact, ImpactFilm,
-    Precision,
+    end_of_impact, eq17_residual, run_cycles, unload, CycleOptions, Impact, ImpactFilm, Precision,
 };
 
 const SIGMA: f64 = paper::SIGMA_S;
@@ -36,7 +35,12 @@ fn surface<P: PlasticityLaw, A: AdhesionLaw>(
 }
 
 fn mk() -> MaugisKim {
-    MaugisKim::new(DugdaleParams::for_pair(&pair(), paper::WORK_OF_ADHESION, paper::Z0)).unwrap()
+    MaugisKim::new(DugdaleParams::for_pair(
+        &pair(),
+        paper::WORK_OF_ADHESION,
+        paper::Z0,
+    ))
+    .unwrap()
 }
 
 fn plastic(
@@ -74,14 +78,25 @@ fn end_of_impact_satisfies_the_energy_balance_of_eq_17_where_the_pressure_is_com
         let gw = plastic(modulus);
         for (hist, e_i) in [
             (GwHistory::VIRGIN, 0.5),
-            (GwHistory::Flat { deepest: 1.3 * SIGMA }, 0.5),
+            (
+                GwHistory::Flat {
+                    deepest: 1.3 * SIGMA,
+                },
+                0.5,
+            ),
             (GwHistory::VIRGIN, 0.02),
         ] {
             let end = end_of_impact(&gw, &hist, e_i, FILM, Precision::default()).unwrap();
-            assert!(end.pressure > 0.0, "{modulus:?}: the approach pressure at d_e is compressive");
+            assert!(
+                end.pressure > 0.0,
+                "{modulus:?}: the approach pressure at d_e is compressive"
+            );
             // an independent quadrature of the balance (eq17_residual) closes at d_e ...
             let g = eq17_residual(&gw, &hist, end.d_e, e_i, FILM).unwrap();
-            assert!(g.abs() <= 1e-9 * e_i, "{modulus:?} E_I {e_i}: residual {g:e}");
+            assert!(
+                g.abs() <= 1e-9 * e_i,
+                "{modulus:?} E_I {e_i}: residual {g:e}"
+            );
             // ... and the error estimate is honest and within the target
             assert!(end.error <= 1e-10 * SIGMA, "{end:?}");
             let g_up = eq17_residual(&gw, &hist, end.d_e + 1e-6 * SIGMA, e_i, FILM).unwrap();
@@ -101,7 +116,11 @@ fn a_closure_in_the_tensile_well_is_not_an_end_of_impact() {
         work_of_adhesion: 20.0,
     })
     .unwrap();
-    let gw = surface(EtsionKadin::new(&p, YieldModulus::Composite).unwrap(), jkr, 1e-11);
+    let gw = surface(
+        EtsionKadin::new(&p, YieldModulus::Composite).unwrap(),
+        jkr,
+        1e-11,
+    );
     let hist = GwHistory::VIRGIN;
     let end = end_of_impact(&gw, &hist, 0.5, FILM, Precision::default()).unwrap();
     assert!(end.pressure > 0.0);
@@ -125,7 +144,11 @@ fn history_only_deepens_and_pull_out_grows_until_accommodation() {
     let mut pull = 0.0;
     for c in &run.cycles {
         let d = c.history.deepest().unwrap();
-        assert!(d <= deepest, "cycle {}: deepest {d} above {deepest}", c.cycle);
+        assert!(
+            d <= deepest,
+            "cycle {}: deepest {d} above {deepest}",
+            c.cycle
+        );
         assert!(c.d_e() >= d);
         // contact hardening: each impact flattens more asperities, pull-out does not fall
         assert!(
@@ -136,12 +159,18 @@ fn history_only_deepens_and_pull_out_grows_until_accommodation() {
         deepest = d;
         pull = c.unloading.pull_out_pressure;
     }
-    assert!(run.cycles[0].d_e() > run.cycles[1].d_e(), "the second impact goes deeper");
+    assert!(
+        run.cycles[0].d_e() > run.cycles[1].d_e(),
+        "the second impact goes deeper"
+    );
     // the verdict lives in the result
     assert_eq!(run.largest_pull_out, pull);
     assert!((run.pull_out_ratio - pull / 16_880.0).abs() < 1e-12 * run.pull_out_ratio);
     assert_eq!(run.stiction, run.pull_out_ratio > 1.0);
-    assert_eq!(run.first_sticking_cycle, run.cycles.iter().find(|c| c.sticks).map(|c| c.cycle));
+    assert_eq!(
+        run.first_sticking_cycle,
+        run.cycles.iter().find(|c| c.sticks).map(|c| c.cycle)
+    );
 }
 
 #[test]
@@ -172,7 +201,9 @@ fn elastic_surface_repeats_every_cycle() {
         assert!(dd <= c.end.error + first.end.error, "d_e moved {dd:e}");
         let dp = (c.unloading.pull_out_pressure - first.unloading.pull_out_pressure).abs();
         assert!(
-            dp <= c.unloading.pull_out_error + first.unloading.pull_out_error + 1e-12 * first.unloading.pull_out_pressure,
+            dp <= c.unloading.pull_out_error
+                + first.unloading.pull_out_error
+                + 1e-12 * first.unloading.pull_out_pressure,
             "pull-out moved {dp:e}"
         );
     }
@@ -186,13 +217,20 @@ fn the_pull_out_does_not_depend_on_the_curve_asked_for() {
     let base = unload(&gw, &hist, 0.3 * SIGMA, 0, Precision::default()).unwrap();
     for points in [2, 7, 300] {
         let u = unload(&gw, &hist, 0.3 * SIGMA, points, Precision::default()).unwrap();
-        assert_eq!(u.pull_out_pressure, base.pull_out_pressure, "points {points}");
+        assert_eq!(
+            u.pull_out_pressure, base.pull_out_pressure,
+            "points {points}"
+        );
         assert_eq!(u.curve.len(), points);
     }
     // no sample of a dense curve lies below the pull-out found without one
     let dense = unload(&gw, &hist, 0.3 * SIGMA, 2000, Precision::default()).unwrap();
     let lowest = dense.curve.iter().map(|p| p.pressure).fold(0.0, f64::min);
-    assert!(-lowest <= base.pull_out_pressure * (1.0 + 1e-12), "{lowest} vs {}", base.pull_out_pressure);
+    assert!(
+        -lowest <= base.pull_out_pressure * (1.0 + 1e-12),
+        "{lowest} vs {}",
+        base.pull_out_pressure
+    );
 }
 
 #[test]
@@ -223,7 +261,10 @@ fn contact_on_part_of_the_electrode_absorbs_more_per_area_and_pulls_on_less() {
 fn an_energy_the_surface_cannot_absorb_is_an_error() {
     let gw = plastic(YieldModulus::AsPrinted);
     let e = end_of_impact(&gw, &GwHistory::VIRGIN, 1e12, FILM, Precision::default()).unwrap_err();
-    assert!(matches!(e, switch_1d::SwitchError::EnergyNotAbsorbed { .. }), "{e}");
+    assert!(
+        matches!(e, switch_1d::SwitchError::EnergyNotAbsorbed { .. }),
+        "{e}"
+    );
     assert!(end_of_impact(&gw, &GwHistory::VIRGIN, -1.0, FILM, Precision::default()).is_err());
     let bad = Impact {
         contact_area_fraction: 0.0,
