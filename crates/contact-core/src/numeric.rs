@@ -118,29 +118,88 @@ pub fn brent_from<E: From<CoreError>>(
     hi: Sample,
     tol: Tolerance,
 ) -> Result<f64, E> {
-    let (mut a, mut fa) = (lo.x, finite::<E>(what, lo.x, lo.f)?);
-    let (mut b, mut fb) = (hi.x, finite::<E>(what, hi.x, hi.f)?);
-    if fa == 0.0 {
-        return Ok(a);
+    let lo = Sample {
+        x: lo.x,
+        f: finite::<E>(what, lo.x, lo.f)?,
+    };
+    let hi = Sample {
+        x: hi.x,
+        f: finite::<E>(what, hi.x, hi.f)?,
+    };
+    for end in [lo, hi] {
+        if end.f == 0.0 {
+            return Ok(end.x);
+        }
     }
-    if fb == 0.0 {
-        return Ok(b);
-    }
-    if fa.signum() == fb.signum() {
+    if (lo.f < 0.0) == (hi.f < 0.0) {
         return Err(CoreError::NotBracketed {
             what,
-            lo: a,
-            hi: b,
-            f_lo: fa,
-            f_hi: fb,
+            lo: lo.x,
+            hi: hi.x,
+            f_lo: lo.f,
+            f_hi: hi.f,
         }
         .into());
     }
+    match zeroin(
+        |x| finite::<E>(what, x, f(x)?),
+        lo,
+        hi,
+        |x| tol.width(x),
+        tol.max_iter,
+    ) {
+        Ok(bracket) => Ok(bracket.best.x),
+        Err(ZeroinStop::Failed(e, _)) => Err(e),
+        Err(ZeroinStop::NoConvergence(_)) => Err(CoreError::NoConvergence {
+            what,
+            iterations: tol.max_iter,
+        }
+        .into()),
+    }
+}
+
+/// Where [`zeroin`] ended: `best` the end with the smaller |f| (the root's estimate), `other`
+/// the far end of the bracket, and the evaluations spent.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bracket {
+    /// The root's estimate.
+    pub best: Sample,
+    /// The other end of the bracket.
+    pub other: Sample,
+    /// Evaluations of f.
+    pub evaluations: usize,
+}
+
+/// Why [`zeroin`] stopped without a bracket narrow enough.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ZeroinStop<E> {
+    /// `max_evaluations` spent; the bracket reached.
+    NoConvergence(Bracket),
+    /// f failed; its error and the last bracket before it.
+    Failed(E, Bracket),
+}
+
+/// The Brent-Dekker "zeroin" iteration (Brent 1973, ch. 4: inverse quadratic interpolation
+/// or secant, falling back to bisection) on a bracket whose ends lie on different sides
+/// (f < 0 against f >= 0), returning the final bracket. Values may be infinite (a side known
+/// by its sign only, like the log of a zero ratio): while any kept value is, the step is a
+/// bisection. Stops when half the bracket is below `width(b)/2 + 2 eps |b|` or f(b) = 0.
+/// [`brent_from`] is this with finite values and a [`Tolerance`]; the design sweeps call it
+/// directly for the bracket and the infinite sides.
+pub fn zeroin<E>(
+    mut f: impl FnMut(f64) -> Result<f64, E>,
+    lo: Sample,
+    hi: Sample,
+    width: impl Fn(f64) -> f64,
+    max_evaluations: usize,
+) -> Result<Bracket, ZeroinStop<E>> {
+    let (mut a, mut fa, mut b, mut fb) = (lo.x, lo.f, hi.x, hi.f);
     let (mut c, mut fc) = (a, fa);
     let mut d = b - a;
     let mut e = d;
-    for _ in 0..tol.max_iter {
-        if fb.signum() == fc.signum() {
+    let mut evaluations = 0;
+    loop {
+        if (fb < 0.0) == (fc < 0.0) {
             c = a;
             fc = fa;
             d = b - a;
@@ -154,12 +213,21 @@ pub fn brent_from<E: From<CoreError>>(
             fb = fc;
             fc = fa;
         }
-        let t = 2.0 * f64::EPSILON * b.abs() + 0.5 * tol.width(b);
+        let t = 2.0 * f64::EPSILON * b.abs() + 0.5 * width(b);
         let m = 0.5 * (c - b);
+        let here = Bracket {
+            best: Sample { x: b, f: fb },
+            other: Sample { x: c, f: fc },
+            evaluations,
+        };
         if m.abs() <= t || fb == 0.0 {
-            return Ok(b);
+            return Ok(here);
         }
-        if e.abs() >= t && fa.abs() > fb.abs() {
+        if evaluations >= max_evaluations {
+            return Err(ZeroinStop::NoConvergence(here));
+        }
+        let finite = fa.is_finite() && fb.is_finite() && fc.is_finite();
+        if finite && e.abs() >= t && fa.abs() > fb.abs() {
             let s = fb / fa;
             let (mut p, mut q);
             if a == c {
@@ -190,13 +258,19 @@ pub fn brent_from<E: From<CoreError>>(
         a = b;
         fa = fb;
         b += if d.abs() > t { d } else { t.copysign(m) };
-        fb = finite::<E>(what, b, f(b)?)?;
+        evaluations += 1;
+        fb = match f(b) {
+            Ok(v) => v,
+            Err(err) => {
+                let last = Bracket {
+                    best: Sample { x: a, f: fa },
+                    other: Sample { x: c, f: fc },
+                    evaluations,
+                };
+                return Err(ZeroinStop::Failed(err, last));
+            }
+        };
     }
-    Err(CoreError::NoConvergence {
-        what,
-        iterations: tol.max_iter,
-    }
-    .into())
 }
 
 /// A minimum found by [`local_min`] or [`grid_min`].

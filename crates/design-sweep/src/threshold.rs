@@ -3,6 +3,7 @@
 use crate::grid::{spaced, Spacing};
 use crate::point::{check_field, guarded, DesignPoint, PointError};
 use crate::DesignError;
+use contact_core::numeric::{zeroin, Sample, ZeroinStop};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -305,15 +306,29 @@ where
         } else {
             FreeSide::Above
         };
-        let (found, detail) = match zeroin(ua, ga, ub, gb, tol_u, g, MAX_REFINE_EVALUATIONS) {
+        let (found, detail) = match zeroin(
+            g,
+            Sample { x: ua, f: ga },
+            Sample { x: ub, f: gb },
+            tol_u,
+            MAX_REFINE_EVALUATIONS,
+        ) {
             Ok(b) => (b, None),
-            Err((m, b)) => (b, Some(m)),
+            Err(ZeroinStop::Failed(m, b)) => (b, Some(m)),
+            Err(ZeroinStop::NoConvergence(b)) => (
+                b,
+                Some(format!(
+                    "no convergence after {} evaluations",
+                    b.evaluations
+                )),
+            ),
         };
         evaluations += found.evaluations;
-        let (u1, g1, u2, g2) = if found.b <= found.c {
-            (found.b, found.fb, found.c, found.fc)
+        let (near, far) = (found.best, found.other);
+        let (u1, g1, u2, g2) = if near.x <= far.x {
+            (near.x, near.f, far.x, far.f)
         } else {
-            (found.c, found.fc, found.b, found.fb)
+            (far.x, far.f, near.x, near.f)
         };
         let (x1, x2) = (from_u(u1), from_u(u2));
         let half = 0.5 * (x2 - x1).abs();
@@ -334,7 +349,7 @@ where
         let (critical_value, uncertainty, slope) = match kind {
             CrossingKind::Continuous => {
                 let u = if g2 == g1 {
-                    found.b
+                    found.best.x
                 } else {
                     (u1 - g1 * (u2 - u1) / (g2 - g1)).clamp(u1, u2)
                 };
@@ -403,117 +418,4 @@ where
         crossings,
         scan,
     })
-}
-
-/// A bracket of a sign change: `b` the best end, `c` the other.
-#[derive(Debug, Clone, Copy)]
-struct Bracket {
-    b: f64,
-    fb: f64,
-    c: f64,
-    fc: f64,
-    evaluations: usize,
-}
-
-/// Brent-Dekker zero-in on a bracket `[a, b]` whose ends lie on different sides
-/// (`f < 0` against `f >= 0`). `-inf` is allowed as a value (a side without a magnitude):
-/// while any of the three kept values is infinite the step is a bisection. Stops when the
-/// bracket is narrower than `tol(b)`. A failed evaluation ends the search with the last
-/// valid bracket.
-fn zeroin(
-    a: f64,
-    fa: f64,
-    b: f64,
-    fb: f64,
-    tol: impl Fn(f64) -> f64,
-    mut f: impl FnMut(f64) -> Result<f64, String>,
-    max_evaluations: usize,
-) -> Result<Bracket, (String, Bracket)> {
-    let (mut a, mut fa, mut b, mut fb) = (a, fa, b, fb);
-    let (mut c, mut fc) = (a, fa);
-    let mut d = b - a;
-    let mut e = d;
-    let mut evaluations = 0;
-    loop {
-        if (fb < 0.0) == (fc < 0.0) {
-            c = a;
-            fc = fa;
-            d = b - a;
-            e = d;
-        }
-        if fc.abs() < fb.abs() {
-            a = b;
-            b = c;
-            c = a;
-            fa = fb;
-            fb = fc;
-            fc = fa;
-        }
-        let tol1 = 2.0 * f64::EPSILON * b.abs() + 0.5 * tol(b);
-        let xm = 0.5 * (c - b);
-        let here = Bracket {
-            b,
-            fb,
-            c,
-            fc,
-            evaluations,
-        };
-        if xm.abs() <= tol1 || fb == 0.0 {
-            return Ok(here);
-        }
-        if evaluations >= max_evaluations {
-            return Err((
-                format!("no convergence after {evaluations} evaluations"),
-                here,
-            ));
-        }
-        let finite = fa.is_finite() && fb.is_finite() && fc.is_finite();
-        if finite && e.abs() >= tol1 && fa.abs() > fb.abs() {
-            let s = fb / fa;
-            let (mut p, mut q);
-            if a == c {
-                p = 2.0 * xm * s;
-                q = 1.0 - s;
-            } else {
-                let qq = fa / fc;
-                let r = fb / fc;
-                p = s * (2.0 * xm * qq * (qq - r) - (b - a) * (r - 1.0));
-                q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
-            }
-            if p > 0.0 {
-                q = -q;
-            } else {
-                p = -p;
-            }
-            if 2.0 * p < (3.0 * xm * q - (tol1 * q).abs()).min((e * q).abs()) {
-                e = d;
-                d = p / q;
-            } else {
-                d = xm;
-                e = d;
-            }
-        } else {
-            d = xm;
-            e = d;
-        }
-        a = b;
-        fa = fb;
-        b += if d.abs() > tol1 { d } else { tol1.copysign(xm) };
-        evaluations += 1;
-        match f(b) {
-            Ok(v) => fb = v,
-            Err(m) => {
-                return Err((
-                    m,
-                    Bracket {
-                        b: a,
-                        fb: fa,
-                        c,
-                        fc,
-                        evaluations,
-                    },
-                ))
-            }
-        }
-    }
 }
