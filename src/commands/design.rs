@@ -117,7 +117,9 @@ impl Evaluator {
     }
 
     /// One design point. Errors of the run that are bad input (exit status 2, such as a
-    /// derived impact energy out of its range) are `OutOfDomain`, the others `Failed`.
+    /// derived impact energy out of its range), and a scene for which the model has no end
+    /// of impact (the surface cannot absorb the impact energy, mostly where adhesion pulls
+    /// harder than the asperities push back), are `OutOfDomain`; the others `Failed`.
     pub fn point(&self, values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
         let s = self.scene(values)?;
         let loaded = Loaded {
@@ -127,7 +129,11 @@ impl Evaluator {
         };
         let r = switch::run(&loaded, false).map_err(|e| {
             let m = error_message(&e);
-            if e.exit_code() == 2 {
+            let no_end_of_impact = matches!(
+                e.cause(),
+                Error::Switch(switch_1d::SwitchError::EnergyNotAbsorbed { .. })
+            );
+            if e.exit_code() == 2 || no_end_of_impact {
                 PointError::OutOfDomain(m)
             } else {
                 PointError::Failed(m)
