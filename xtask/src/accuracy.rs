@@ -3,6 +3,7 @@
 //! the documented domains (half plausible MEMS, half the wide ranges); the table replaces
 //! the marked section of docs/performance.md.
 
+use std::io::IsTerminal;
 use std::time::Instant;
 use stiction::accuracy::Accuracy;
 use stiction::commands::switch::{self, SwitchReport};
@@ -52,6 +53,15 @@ fn errors(a: &SwitchReport, b: &SwitchReport, sigma: f64) -> (f64, f64) {
         })
 }
 
+/// A scene the table flags, on stderr as a scene file, so that it can be rerun alone
+/// (`stiction switch --scene`).
+fn report_scene(s: &SwitchScene) {
+    match toml::to_string(s) {
+        Ok(text) => eprintln!("\n# scene flagged by xtask accuracy\n{text}"),
+        Err(e) => eprintln!("\nscene flagged but not printable: {e}"),
+    }
+}
+
 fn quantile(v: &mut [f64], q: f64) -> f64 {
     if v.is_empty() {
         return f64::NAN;
@@ -91,6 +101,8 @@ pub fn main(args: &[&str]) -> Result<(), String> {
         }
     }
     let modes = [Accuracy::Accurate, Accuracy::Balanced, Accuracy::Fast];
+    // a counter that rewrites its line only makes sense on a terminal
+    let progress = std::io::stderr().is_terminal();
     let mut table = String::new();
     let mut notes = Vec::new();
     for domain in [Domain::Mems, Domain::Wide] {
@@ -113,6 +125,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                 Err(e) => {
                     reference_failed += 1;
                     notes.push(format!("{domain:?} reference: failed: {e}"));
+                    report_scene(&s);
                     continue;
                 }
             };
@@ -125,6 +138,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                         let tg = mode.targets();
                         if de > tg.d_e_tolerance_sigma || po > tg.pull_out_tolerance {
                             stats[k].over += 1;
+                            report_scene(&s);
                             notes.push(format!("{domain:?} {mode}: d_e {de:.1e} sigma_s, pull-out {po:.1e} ({:?}, {:?}, eq 1 {:?})", s.contact.adhesion_law, s.contact.plasticity_law, s.contact.yield_modulus));
                         }
                         stats[k].de.push(de);
@@ -133,15 +147,20 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                     }
                     Err(e) => {
                         stats[k].failed += 1;
+                        report_scene(&s);
                         notes.push(format!(
                             "{domain:?} {mode}: failed where the reference did not: {e}"
                         ));
                     }
                 }
             }
-            eprint!("\r{domain:?}: {scenes}/{} scenes", n / 2);
+            if progress {
+                eprint!("\r{domain:?}: {scenes}/{} scenes", n / 2);
+            }
         }
-        eprintln!();
+        if progress {
+            eprintln!();
+        }
         let accurate_time: f64 = stats[0].time.iter().sum();
         table += &format!(
             "\n**{}** ({scenes} scenes; {unanswered} where the model has no end of impact: the surface cannot absorb the impact energy, in the wide ranges mostly because adhesion pulls harder than the asperities push back; {reference_failed} where the reference mode failed numerically):\n\n",
