@@ -70,8 +70,9 @@ const MAX_ITER: usize = 300;
 const U_MAX: f64 = 340.0;
 const U_MIN: f64 = -340.0;
 
-/// s - atan(s), by its series below s = 0.1 where the difference cancels.
-fn s_minus_atan(s: f64) -> f64 {
+/// s - atan(s), by its series below s = 0.1 where the difference cancels (`t` = atan s,
+/// computed once per point: atan is the costliest operation of a point).
+fn s_minus_atan(s: f64, t: f64) -> f64 {
     if s < 0.1 {
         let x = s * s;
         // sum_{k>=1} (-1)^(k+1) s^(2k+1)/(2k+1)
@@ -84,12 +85,12 @@ fn s_minus_atan(s: f64) -> f64 {
         }
         sum
     } else {
-        s - s.atan()
+        s - t
     }
 }
 
-/// s/m^2 - atan(s), by its series below s = 0.1.
-fn s_over_m2_minus_atan(s: f64) -> f64 {
+/// s/m^2 - atan(s), by its series below s = 0.1 (`t` = atan s).
+fn s_over_m2_minus_atan(s: f64, t: f64) -> f64 {
     if s < 0.1 {
         let x = s * s;
         // sum_{k>=1} (-1)^k (2k/(2k+1)) s^(2k+1)
@@ -102,7 +103,7 @@ fn s_over_m2_minus_atan(s: f64) -> f64 {
         }
         sum
     } else {
-        s / (1.0 + s * s) - s.atan()
+        s / (1.0 + s * s) - t
     }
 }
 
@@ -130,7 +131,7 @@ impl Contact {
         };
         let s_over = s / (1.0 + m); // (m - 1)/s, no overflow
                                     // g1 = s + (m^2 - 2) t = (s - t) + s^2 t
-        let g1 = s_minus_atan(s) + s * s * t;
+        let g1 = s_minus_atan(s, t) + s * s * t;
         // g2 = s t - (m - 1)
         let g2 = s * t - s * s_over;
         let p = 0.5 * lambda * g1;
@@ -203,7 +204,7 @@ impl Contact {
         let l2 = lambda * lambda;
         let (dp, dq) = self.d_pq(lambda);
         let m_minus_1 = s * (s / (1.0 + m));
-        let phi = -2.0 * a * (dp * a + dq) - 4.0 / 3.0 * l2 * s_over_m2_minus_atan(s) * a
+        let phi = -2.0 * a * (dp * a + dq) - 4.0 / 3.0 * l2 * s_over_m2_minus_atan(s, self.t) * a
             + 16.0 / 9.0 * l2 * lambda * m_minus_1 / (m * m);
         // Phi = O(1/s) at large s: rescale so the bracket search compares O(1) values.
         phi * m
