@@ -53,6 +53,24 @@ pub fn json<T: Serialize + ?Sized>(v: &T) -> String {
     serde_json::to_string_pretty(v).expect("reports hold finite numbers and string keys") + "\n"
 }
 
+/// A float as JSON: the number when finite, else its name (`"inf"`, `"-inf"`, `"NaN"`),
+/// never `null` (serde `serialize_with`; an infinite yield stress means "never yields").
+pub fn number_or_name<S: serde::Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+    if v.is_finite() {
+        s.serialize_f64(*v)
+    } else {
+        s.serialize_str(&crate::scene::num(*v))
+    }
+}
+
+/// [`number_or_name`] for an optional float (absent ones are skipped by the field).
+pub fn some_number_or_name<S: serde::Serializer>(v: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
+    match v {
+        Some(v) => number_or_name(v, s),
+        None => s.serialize_none(),
+    }
+}
+
 /// Skips a float that is not finite (serde `skip_serializing_if`).
 pub fn not_finite(v: &f64) -> bool {
     !v.is_finite()

@@ -298,3 +298,36 @@ fn a_law_returning_nan_is_named() {
         .to_string();
     assert!(e.contains("NaN") && e.contains("asperity law"), "{e}");
 }
+
+/// An infinite yield stress (elastic asperities: "never yields") is echoed by name in every
+/// JSON that carries the scene, and delta_CP = inf likewise: never as null.
+#[test]
+fn infinite_values_are_named_never_null() {
+    let edits = [
+        ("yield_stress", "yield_stress = inf"),
+        ("counter", "counter = \"material\"\ncounter_youngs_modulus = 168e9\ncounter_poisson_ratio = 0.38\ncounter_yield_stress = inf"),
+        ("plasticity_law", "plasticity_law = \"elastic\""),
+    ];
+    for (kind, args) in [
+        ("switch", vec!["--cycles", "1", "--accuracy", "fast"]),
+        ("surface", vec!["--accuracy", "fast"]),
+        ("asperity", vec![]),
+    ] {
+        let f = temp_file(
+            &format!("inf-yield-{kind}"),
+            scene_with(kind, &edits).as_bytes(),
+        );
+        let mut a = vec![kind, "--scene", f.to_str().unwrap(), "--format", "json"];
+        a.extend(args);
+        let v = json(&stiction(&a));
+        assert!(!has_null(&v), "{kind}: a null in the JSON");
+        assert_eq!(v["scene"]["contact"]["yield_stress"], "inf", "{kind}");
+        assert_eq!(
+            v["scene"]["contact"]["counter_yield_stress"], "inf",
+            "{kind}"
+        );
+        if kind == "asperity" {
+            assert_eq!(v["delta_cp"], "inf");
+        }
+    }
+}

@@ -81,6 +81,7 @@ pub struct AsperityReport {
     /// Plot and table title.
     pub title: String,
     /// Yield onset delta_CP (m), eq 1.
+    #[serde(serialize_with = "crate::render::number_or_name")]
     pub delta_cp: f64,
     /// Transition parameter at the initial radius.
     pub lambda: f64,

@@ -166,6 +166,7 @@ impl Default for EffectiveRadius {
 pub struct Contact {
     pub youngs_modulus: f64,
     pub poisson_ratio: f64,
+    #[serde(serialize_with = "crate::render::number_or_name")]
     pub yield_stress: f64,
     pub radius: f64,
     pub work_of_adhesion: f64,
@@ -175,7 +176,11 @@ pub struct Contact {
     pub counter_youngs_modulus: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub counter_poisson_ratio: Option<f64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "crate::render::some_number_or_name"
+    )]
     pub counter_yield_stress: Option<f64>,
     #[serde(default = "default_adhesion")]
     pub adhesion_law: AdhesionKind,
