@@ -61,14 +61,28 @@ pub fn adhesion_yields(
         return Ok(None);
     }
     let d0 = zero_load_interference(elastic)?;
+    // the body that yields first governs delta_CP: name its E and S_Y
+    let counter_yields = matches!(
+        crate::model::plasticity(contact, false)?,
+        crate::model::AnyPlasticity::EtsionKadin(l)
+            if l.yielding_body() == asperity_plastic::YieldingBody::Counter
+    );
+    let (body, e, s_y) = match (
+        counter_yields,
+        contact.counter_youngs_modulus,
+        contact.counter_yield_stress,
+    ) {
+        (true, Some(e), Some(s_y)) => ("counter-surface", e, s_y),
+        _ => ("asperity", contact.youngs_modulus, contact.yield_stress),
+    };
     Ok((d0 > dcp).then(|| Warning {
         code: "adhesion_yields_asperity",
         message: format!(
-            "adhesion alone presses an asperity to {} at zero load, beyond its yield onset delta_CP = {} (E = {}, S_Y = {}, w = {} J/m^2): the model assumes plasticity uncoupled from adhesion, which does not hold here (the paper's caveat for gold)",
+            "adhesion alone presses an asperity to {} at zero load, beyond its yield onset delta_CP = {} ({body} yields first: E = {}, S_Y = {}; w = {} J/m^2): the model assumes plasticity uncoupled from adhesion, which does not hold here (the paper's caveat for gold)",
             render::si(d0, "m", 3),
             render::si(dcp, "m", 3),
-            render::pressure(contact.youngs_modulus),
-            render::pressure(contact.yield_stress),
+            render::pressure(e),
+            render::pressure(s_y),
             crate::scene::num(contact.work_of_adhesion),
         ),
     }))

@@ -375,14 +375,24 @@ fn cases() -> Vec<Case> {
             &["--cycles", "-1"],
         ),
         arg_case(
-            "too many cycles",
+            "too many cycles names the option and its domain",
             &["switch", "--cycles", "5000"],
-            &["`cycles` = 5000"],
+            &["--cycles", "5000", "an integer in [1, 1000]"],
         ),
         arg_case(
-            "negative delta_max flag",
+            "zero cycles names the option",
+            &["switch", "--cycles", "0"],
+            &["--cycles", "'0'", "an integer in [1, 1000]"],
+        ),
+        arg_case(
+            "negative delta_max flag names the option",
             &["asperity", "--delta-max", "-1e-9"],
-            &["delta_max[0]", "-1e-9"],
+            &["invalid --delta-max", "-1e-9"],
+        ),
+        arg_case(
+            "unload_from out of range names the option",
+            &["surface", "--unload-from", "1e308"],
+            &["invalid --unload-from", "1e308 m", "20 sigma_s"],
         ),
         arg_case(
             "missing scene file",

@@ -331,3 +331,36 @@ fn infinite_values_are_named_never_null() {
         }
     }
 }
+
+/// With a soft counter-film that yields first (Au-like: E = 79 GPa, S_Y = 0.3 GPa, under
+/// Ru), the adhesion warning quotes the counter-film's E and S_Y, the body whose delta_CP
+/// it compares with, not the asperity's.
+#[test]
+fn adhesion_warning_names_the_body_that_yields_first() {
+    let scene = scene_with(
+        "asperity",
+        &[(
+            "counter",
+            "counter = \"material\"\ncounter_youngs_modulus = 79e9\ncounter_poisson_ratio = 0.42\ncounter_yield_stress = 0.3e9",
+        )],
+    );
+    let f = temp_file("counter-yields-first", scene.as_bytes());
+    let v = json(&stiction(&[
+        "asperity",
+        "--scene",
+        f.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
+    let w = v["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|w| w["code"] == "adhesion_yields_asperity")
+        .expect("gold-like counter-film: adhesion yields it");
+    let m = w["message"].as_str().unwrap();
+    assert!(
+        m.contains("counter-surface yields first: E = 79.00 GPa, S_Y = 300.0 MPa"),
+        "{m}"
+    );
+}

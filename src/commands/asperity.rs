@@ -128,6 +128,14 @@ impl Command for AsperityCommand {
         Ok(())
     }
 
+    fn overrides(&self) -> Vec<(&'static str, &'static str)> {
+        if self.delta_max.is_empty() {
+            vec![]
+        } else {
+            vec![("delta_max", "--delta-max")]
+        }
+    }
+
     fn run(&self, loaded: &Loaded<AsperityScene>) -> Result<AsperityReport, Error> {
         let scene = &loaded.scene;
         let c = &scene.contact;

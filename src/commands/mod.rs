@@ -29,6 +29,12 @@ pub trait Command {
         let _ = scene;
         Ok(())
     }
+    /// The scene keys this invocation's options replaced, with the option that set each
+    /// (`("cycles", "--cycles")`): a value out of its domain is then reported against the
+    /// option the user typed, not against the scene file.
+    fn overrides(&self) -> Vec<(&'static str, &'static str)> {
+        Vec::new()
+    }
     /// The computation.
     fn run(&self, scene: &Loaded<Self::Scene>) -> Result<Self::Report, Error>;
     /// Files to write besides standard output (an `--out` folder, a `--plot`).
@@ -44,7 +50,10 @@ pub trait Command {
 pub fn pipeline<C: Command>(cmd: &C) -> Result<String, Error> {
     let mut loaded = scene::load::<C::Scene>(cmd.scene_path())?;
     cmd.apply(&mut loaded.scene)?;
-    loaded.scene.validate(&loaded.file)?;
+    loaded
+        .scene
+        .validate(&loaded.file)
+        .map_err(|e| blame_option(e, &cmd.overrides()))?;
     let report = cmd.run(&loaded).map_err(|e| e.in_scene(&loaded.file))?;
     for w in report.warnings() {
         eprintln!("warning[{}]: {}", w.code, w.message);
@@ -58,6 +67,24 @@ pub fn pipeline<C: Command>(cmd: &C) -> Result<String, Error> {
         }
     }
     Ok(text)
+}
+
+/// A scene error on a key an option replaced, as an error of that option.
+fn blame_option(e: scene::SceneError, overrides: &[(&str, &str)]) -> Error {
+    if let scene::SceneError::Field {
+        key,
+        value,
+        allowed,
+        ..
+    } = &e
+    {
+        // `delta_max[0]` was set by `--delta-max` as much as `delta_max` itself
+        let base = key.split('[').next().unwrap_or(key);
+        if let Some((_, option)) = overrides.iter().find(|(k, _)| *k == base) {
+            return Error::usage(option, format!("{value}: must be {allowed}"));
+        }
+    }
+    e.into()
 }
 
 /// Renders a report computed without a scene.

@@ -100,6 +100,13 @@ impl Command for SurfaceCommand {
         Ok(())
     }
 
+    fn overrides(&self) -> Vec<(&'static str, &'static str)> {
+        match self.unload_from {
+            Some(_) => vec![("unload_from", "--unload-from")],
+            None => vec![],
+        }
+    }
+
     fn run(&self, loaded: &Loaded<SurfaceScene>) -> Result<SurfaceReport, Error> {
         let s = &loaded.scene;
         let gw = model::surface(&s.contact, &s.surface, s.accuracy, 0.0, false)?;

@@ -29,7 +29,8 @@ pub struct SwitchCommand {
     #[arg(
         long,
         conflicts_with = "until_accommodated",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = crate::scene::fields::count_option("cycles")
     )]
     pub cycles: Option<usize>,
     /// Run until accommodation is detected (at most the scene's cycles, or 1000).
@@ -519,6 +520,13 @@ impl Command for SwitchCommand {
             scene.accuracy = a;
         }
         Ok(())
+    }
+
+    fn overrides(&self) -> Vec<(&'static str, &'static str)> {
+        match self.cycles {
+            Some(_) => vec![("cycles", "--cycles")],
+            None => vec![],
+        }
     }
 
     fn run(&self, loaded: &Loaded<SwitchScene>) -> Result<SwitchReport, Error> {

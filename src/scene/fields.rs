@@ -212,6 +212,22 @@ pub fn field(key: &str) -> Option<&'static Field> {
     FIELDS.iter().find(|f| f.key == key)
 }
 
+/// A clap value parser for an option that replaces the count field `key`: an integer in
+/// the field's domain, with the domain in the message otherwise (`--cycles -1`: "must be
+/// an integer in [1, 1000]", not a parse error about digits).
+pub fn count_option(key: &'static str) -> impl Fn(&str) -> Result<usize, String> + Clone {
+    move |text: &str| {
+        let f = field(key).unwrap_or_else(|| panic!("{key} is not in fields::FIELDS"));
+        let Domain::Count { lo, hi } = f.domain else {
+            panic!("{key} is not a count")
+        };
+        match text.trim().parse::<i128>() {
+            Ok(v) if v >= lo as i128 && v <= hi as i128 => Ok(v as usize),
+            _ => Err(format!("must be {}", f.domain.describe())),
+        }
+    }
+}
+
 /// The keys of one kind of scene, in table order.
 pub fn of(kind: Kind) -> impl Iterator<Item = &'static Field> {
     FIELDS.iter().filter(move |f| f.scenes.contains(&kind))

@@ -619,9 +619,9 @@ impl Scene for SurfaceScene {
                 if !(d.is_finite() && d.abs() <= lim) {
                     return Err(c.fail(
                         key,
-                        num(d),
+                        format!("{} m", num(d)),
                         format!(
-                            "finite and within 20 sigma_s = {} of the mean plane",
+                            "finite and within 20 sigma_s = {} m of the mean plane",
                             num(lim)
                         ),
                     ));

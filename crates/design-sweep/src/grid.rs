@@ -112,19 +112,19 @@ impl Axis {
         };
         check_field(field).map_err(err)?;
         if !from.is_finite() {
-            return Err(err(format!("FROM = {from} must be finite")));
+            return Err(err(format!("FROM = {from:e} must be finite")));
         }
         if !to.is_finite() {
-            return Err(err(format!("TO = {to} must be finite")));
+            return Err(err(format!("TO = {to:e} must be finite")));
         }
         if from == to {
             return Err(err(format!(
-                "FROM and TO are both {from}: they must differ"
+                "FROM and TO are both {from:e}: they must differ"
             )));
         }
         if spacing == Spacing::Log && !(from > 0.0 && to > 0.0) {
             return Err(err(format!(
-                "log spacing needs FROM > 0 and TO > 0, got FROM = {from}, TO = {to}"
+                "log spacing needs FROM > 0 and TO > 0, got FROM = {from:e}, TO = {to:e}"
             )));
         }
         if !(1..=MAX_AXIS_POINTS).contains(&n) {

@@ -216,12 +216,12 @@ where
     check_field(field).map_err(bad)?;
     if !(from.is_finite() && to.is_finite()) {
         return Err(bad(format!(
-            "--from {from} and --to {to} must be finite numbers"
+            "--from {from:e} and --to {to:e} must be finite numbers"
         )));
     }
     if from == to {
         return Err(bad(format!(
-            "--from and --to are both {from}: they must differ"
+            "--from and --to are both {from:e}: they must differ"
         )));
     }
     let ThresholdOptions {

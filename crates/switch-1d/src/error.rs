@@ -8,7 +8,7 @@ pub enum SwitchError {
     #[error("switch: {0}")]
     Core(#[from] CoreError),
     /// The surface cannot absorb the impact energy within the separations it covers.
-    #[error("the surface cannot absorb impact energy {energy:e} J/m^2 down to separation {d:e} m, where its asperities are pressed as deep as their radius: the work of the contact pressure there is {absorbed:e} J/m^2{}", if *absorbed < 0.0 { " (negative: adhesion pulls the surfaces together harder than the asperities push back, so the model has no end of impact)" } else { "" })]
+    #[error("the surface cannot absorb impact energy {energy:e} J/m^2 down to separation {d:e} m, where its asperities are pressed as deep as their radius: the work of the contact pressure there is {absorbed:e} J/m^2{}", if *absorbed < 0.0 { " (negative: adhesion pulls the surfaces together harder than the asperities push back, so the model has no end of impact)" } else if *absorbed == 0.0 { " (zero: no asperity is touched above that depth; earlier impacts flattened them down to it)" } else { "" })]
     EnergyNotAbsorbed {
         /// The impact energy per unit contact area (J/m^2).
         energy: f64,
