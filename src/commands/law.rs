@@ -621,7 +621,7 @@ fn tabulate_scene(cmd: &LawCommand, loaded: &Loaded<SwitchScene>) -> Result<LawR
         report.warnings.push(Warning {
             code: "law_not_converged",
             message: format!(
-                "a refinement of the table stopped at a cap before meeting the tolerance {:e}; the measured error (largest {:.2e}) says by how much",
+                "the table misses the tolerance {:e} where it could not refine (a cap on nodes or branches, or a --d-min grid, whose histories are not refined: give more of them or omit --d-min); the measured error (largest {:.2e}) says by how much",
                 cmd.tolerance,
                 report.measured_error.max()
             ),

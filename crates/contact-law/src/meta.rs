@@ -78,7 +78,8 @@ pub struct TabulationInfo {
     /// Calls of `LawSource::pressure` (tabulation and measurement).
     pub source_evaluations: usize,
     /// False when a refinement stopped at a cap (node count, branch count or minimum
-    /// width) before meeting the tolerance; the measured error then says by how much.
+    /// width) before meeting the tolerance, or when a user grid of histories (not
+    /// refined) misses it between two of them; the measured error then says by how much.
     pub converged: bool,
 }
 

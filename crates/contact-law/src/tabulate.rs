@@ -868,6 +868,15 @@ pub fn tabulate<S: LawSource + ?Sized>(source: &S, o: &Tabulation) -> Result<Con
         let floor = |d: f64| floor_between(&built, d);
         let mut f = |d: f64| src.p(d, f64::INFINITY, Branch::Virgin);
         converged &= virgin.refine(&mut f, &floor, r)?;
+    } else {
+        // the user's grid is not refined, but the interpolation between its histories is
+        // checked as the adaptive rule checks it: a miss is reported, not hidden
+        for k in 0..built.len().saturating_sub(1) {
+            if !mid_check(&mut src, &built[k], &built[k + 1], o.tolerance)? {
+                converged = false;
+                break;
+            }
+        }
     }
     let virgin_min = {
         let floor = |d: f64| floor_between(&built, d);

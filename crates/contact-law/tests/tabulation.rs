@@ -221,6 +221,28 @@ fn a_user_grid_is_used_as_given() {
     // coarse in d_min: still measured honestly, and worse than the adaptive grid
     let m = law.measured_error().unwrap();
     assert!(m.retract.max > common::law().measured_error().unwrap().retract.max);
+    // a grid too coarse for the tolerance is not refined but said to miss it
+    if m.retract.max > 5.0 * info.tolerance {
+        assert!(
+            !info.converged,
+            "measured {:e} > tolerance {:e}",
+            m.retract.max, info.tolerance
+        );
+    }
+}
+
+#[test]
+fn a_coarse_user_grid_is_reported_as_missing_the_tolerance() {
+    let coarse = tabulate(
+        &toy(),
+        &Tabulation::uniform("15e-9:1.5e-9:4".parse().unwrap()),
+    )
+    .unwrap();
+    let info = coarse.tabulation().unwrap();
+    assert!(coarse.measured_error().unwrap().retract.max > info.tolerance);
+    assert!(!info.converged);
+    // the adaptive grid over the same range meets it
+    assert!(common::law().tabulation().unwrap().converged);
 }
 
 #[test]
