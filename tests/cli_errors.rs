@@ -409,6 +409,23 @@ fn cases() -> Vec<Case> {
             &["md", "--lambda", "one"],
             &["invalid value 'one'", "--lambda"],
         ),
+        // a valid but huge run is refused before it computes (../shared/repro D13)
+        Case {
+            name: "curve output bounded",
+            kind: "switch",
+            scene: Some(
+                edit("switch", "points", "points = 100000")
+                    .replace("cycles = 10 ", "cycles = 1000 ")
+                    .into_bytes(),
+            ),
+            args: vec![],
+            fragments: vec![
+                "`points` = 100000",
+                "at most 1e4 with cycles = 1000",
+                "1e8 curve points",
+            ],
+            code: 2,
+        },
         // a numerical failure: a sparse, very smooth surface cannot absorb 100 J/m^2
         Case {
             name: "energy the surface cannot absorb",

@@ -657,6 +657,22 @@ impl Scene for SwitchScene {
         c.count("cycles", self.cycles)?;
         c.value("accommodation_tolerance", self.accommodation_tolerance)?;
         c.count("points", self.points)?;
+        // every cycle writes its curves and the whole report is held for rendering: bound
+        // it up front rather than fail on memory after the computation
+        let curve_points = self.points as f64 * self.cycles as f64;
+        if curve_points > MAX_CURVE_POINTS {
+            return Err(c.fail(
+                "points",
+                self.points.to_string(),
+                format!(
+                    "at most {} with cycles = {}: points x cycles = {} curve points exceeds {} (about 1 GB of output); lower points or cycles (points = 0 keeps the pull-out and writes no curves)",
+                    num((MAX_CURVE_POINTS / self.cycles as f64).floor()),
+                    self.cycles,
+                    num(curve_points),
+                    num(MAX_CURVE_POINTS)
+                ),
+            ));
+        }
         self.switch
             .film_youngs_modulus
             .get_or_insert(self.contact.youngs_modulus);
@@ -669,6 +685,9 @@ impl Scene for SwitchScene {
         self.accuracy
     }
 }
+
+/// The most curve points (points x cycles) a switch run may write.
+pub const MAX_CURVE_POINTS: f64 = 1e7;
 
 /// A scene with `key` (`section.key`, a numeric key of [`fields::FIELDS`]) set to `value`:
 /// the TOML tree is edited and read back, so every check of the scene applies.
