@@ -397,7 +397,10 @@ where
         if s.n != n {
             return Err(refuse(
                 label,
-                format!("is part {s} but {first_label} is part of {n}"),
+                format!(
+                    "is part {s} (of {} parts) but {first_label} is one of {n} parts",
+                    s.n
+                ),
             ));
         }
         if m.scene != first.scene {
