@@ -80,6 +80,18 @@ impl PlasticityLaw for AnyPlasticity {
             AnyPlasticity::Elastic(l) => l.effective_radius(state, delta),
         }
     }
+    fn fit_range(&self) -> Option<(f64, f64)> {
+        match self {
+            AnyPlasticity::EtsionKadin(l) => PlasticityLaw::fit_range(l),
+            AnyPlasticity::Elastic(l) => PlasticityLaw::fit_range(l),
+        }
+    }
+    fn yielding_body(&self) -> Option<contact_core::YieldingBody> {
+        match self {
+            AnyPlasticity::EtsionKadin(l) => PlasticityLaw::yielding_body(l),
+            AnyPlasticity::Elastic(l) => PlasticityLaw::yielding_body(l),
+        }
+    }
 }
 
 /// The asperity every scene uses.

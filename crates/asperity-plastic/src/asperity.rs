@@ -145,6 +145,25 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         self.plasticity.state(history.delta_max)
     }
 
+    /// delta_CP, then the plasticity law's declared breaks.
+    fn plastic_breaks(&self) -> Vec<f64> {
+        let dcp = self.plasticity.delta_cp();
+        if !dcp.is_finite() {
+            return Vec::new();
+        }
+        let mut b = vec![dcp];
+        b.extend(self.plasticity.breaks().into_iter().filter(|x| x.is_finite() && *x > dcp));
+        b
+    }
+
+    fn fit_range(&self) -> Option<(f64, f64)> {
+        self.plasticity.fit_range()
+    }
+
+    fn yielding_body(&self) -> Option<contact_core::YieldingBody> {
+        self.plasticity.yielding_body()
+    }
+
     /// Jumps happen out of contact (delta <= delta_res), where R_eff = R_res.
     fn jumps(&self, history: AsperityHistory) -> Result<Jumps, LawError> {
         let st = self.plasticity.state(history.delta_max);
@@ -169,6 +188,7 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         if self.plasticity.delta_cp().is_finite() {
             k.push((st.delta_res > 0.0).then_some(st.delta_res));
         }
+        k.extend(self.plasticity.kinks(&st));
         k.extend(
             self.adhesion
                 .kinks(st.r_res)?

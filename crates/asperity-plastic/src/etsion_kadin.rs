@@ -1,4 +1,5 @@
 use crate::error::PlasticError;
+pub use contact_core::YieldingBody;
 use contact_core::{positive, Material, Pair, PlasticState, PlasticityLaw};
 use std::f64::consts::PI;
 
@@ -119,17 +120,6 @@ impl EffectiveRadiusFit {
         let r = omega / self.c2[1];
         self.c2[0] / (1.0 + r * r) - self.c2[2]
     }
-}
-
-/// Which body of a [`Pair`] governs plasticity: the one that yields first.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
-#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum YieldingBody {
-    /// Body 1, the asperity-carrying surface.
-    Asperity,
-    /// Body 2, the counter-surface.
-    Counter,
 }
 
 /// The Etsion-Kadin plasticity law of one asperity (paper eqs 1-5, 12-13, as resolved in
@@ -308,6 +298,15 @@ impl PlasticityLaw for EtsionKadin {
                 * (omega - 1.0)
                 * self.radius
                 * Self::shape(self.fit.c2(omega), x)
+    }
+
+    /// The finite-element range of eqs 4-5 (Etsion, Kligerman & Kadin 2005): 1 to 110.
+    fn fit_range(&self) -> Option<(f64, f64)> {
+        Some((1.0, FIT_RANGE_MAX))
+    }
+
+    fn yielding_body(&self) -> Option<YieldingBody> {
+        Some(self.body)
     }
 }
 

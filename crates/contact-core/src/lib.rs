@@ -35,5 +35,5 @@ pub use error::{finite, positive, CoreError, LawError};
 pub use material::{paper, Material, MaterialProps, Pair};
 pub use traits::{
     AdhesionLaw, AsperityHistory, AsperityModel, Estimate, Jumps, LengthScales, Path, PlasticState,
-    PlasticityLaw, SurfaceLaw,
+    PlasticityLaw, SurfaceLaw, YieldingBody,
 };

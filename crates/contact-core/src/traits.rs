@@ -1,4 +1,5 @@
 use crate::error::LawError;
+use std::sync::Arc;
 
 /// Where a hysteretic law is on its loop. Adhesive contact is path dependent: between
 /// jump-out and jump-in the force depends on whether the bodies came from far away or
@@ -72,7 +73,26 @@ pub struct PlasticState {
     pub extrapolated: bool,
 }
 
+/// Which body of a contact pair governs plasticity: the one that yields first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum YieldingBody {
+    /// Body 1, the asperity-carrying surface.
+    Asperity,
+    /// Body 2, the counter-surface.
+    Counter,
+}
+
 /// Plasticity of one asperity of given initial radius, uncoupled from adhesion.
+///
+/// A law is built from the contact pair (`contact_core::Pair`: both moduli, E*, the
+/// radius), so a force-based law from the literature (Kogut-Etsion, Jackson-Green) can
+/// turn its published force into the effective radius the adhesion law sees through E*.
+/// Besides the state, a law declares what the quadrature over asperity heights and the
+/// physics guards need to know: where its state jumps or bends ([`Self::breaks`],
+/// [`Self::kinks`]), the range its fits were identified on ([`Self::fit_range`]) and which
+/// body yields ([`Self::yielding_body`]).
 pub trait PlasticityLaw {
     /// Initial tip radius R (m).
     fn radius(&self) -> f64;
@@ -84,7 +104,135 @@ pub trait PlasticityLaw {
     /// Effective radius R_eff (m) of the deformed asperity at the current interference
     /// `delta` (m) (paper eq 12); equals `state.r_res` at and below `state.delta_res`.
     fn effective_radius(&self, state: &PlasticState, delta: f64) -> f64;
+
+    /// Values of delta_max (m), besides delta_CP, at which the state or the loading force
+    /// jumps or has a kink (a regime boundary of a piecewise fit, such as omega = 6 of
+    /// Kogut-Etsion). Declared breaks are split points of the height quadrature, which then
+    /// never hunts for them; an undeclared one costs time, never accuracy.
+    fn breaks(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    /// Interferences (m) where R_eff(delta) at `state` is continuous but not smooth,
+    /// position-stable as in [`AdhesionLaw::kinks`] (`None` where a kind is absent); an
+    /// optional speed-up like [`Self::breaks`].
+    fn kinks(&self, state: &PlasticState) -> Vec<Option<f64>> {
+        let _ = state;
+        Vec::new()
+    }
+
+    /// The range of omega = delta_max/delta_CP over which the law's fits were identified
+    /// (finite-element results); `None` for a law with no fitted range (elastic). Results
+    /// beyond it are extrapolations, which the guards report.
+    fn fit_range(&self) -> Option<(f64, f64)> {
+        None
+    }
+
+    /// The body of the pair that yields first and governs plasticity (`None` if neither
+    /// yields).
+    fn yielding_body(&self) -> Option<YieldingBody> {
+        None
+    }
 }
+
+impl<T: AdhesionLaw + ?Sized> AdhesionLaw for &T {
+    fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
+        (**self).force(radius, delta, path)
+    }
+    fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
+        (**self).jumps(radius)
+    }
+    fn jump_in(&self, radius: f64) -> Result<f64, LawError> {
+        (**self).jump_in(radius)
+    }
+    fn kinks(&self, radius: f64) -> Result<Vec<Option<f64>>, LawError> {
+        (**self).kinks(radius)
+    }
+}
+
+impl<T: PlasticityLaw + ?Sized> PlasticityLaw for &T {
+    fn radius(&self) -> f64 {
+        (**self).radius()
+    }
+    fn delta_cp(&self) -> f64 {
+        (**self).delta_cp()
+    }
+    fn state(&self, delta_max: f64) -> PlasticState {
+        (**self).state(delta_max)
+    }
+    fn effective_radius(&self, state: &PlasticState, delta: f64) -> f64 {
+        (**self).effective_radius(state, delta)
+    }
+    fn breaks(&self) -> Vec<f64> {
+        (**self).breaks()
+    }
+    fn kinks(&self, state: &PlasticState) -> Vec<Option<f64>> {
+        (**self).kinks(state)
+    }
+    fn fit_range(&self) -> Option<(f64, f64)> {
+        (**self).fit_range()
+    }
+    fn yielding_body(&self) -> Option<YieldingBody> {
+        (**self).yielding_body()
+    }
+}
+
+macro_rules! plasticity_through {
+    ($ptr:ident) => {
+        impl<T: PlasticityLaw + ?Sized> PlasticityLaw for $ptr<T> {
+            fn radius(&self) -> f64 {
+                (**self).radius()
+            }
+            fn delta_cp(&self) -> f64 {
+                (**self).delta_cp()
+            }
+            fn state(&self, delta_max: f64) -> PlasticState {
+                (**self).state(delta_max)
+            }
+            fn effective_radius(&self, state: &PlasticState, delta: f64) -> f64 {
+                (**self).effective_radius(state, delta)
+            }
+            fn breaks(&self) -> Vec<f64> {
+                (**self).breaks()
+            }
+            fn kinks(&self, state: &PlasticState) -> Vec<Option<f64>> {
+                (**self).kinks(state)
+            }
+            fn fit_range(&self) -> Option<(f64, f64)> {
+                (**self).fit_range()
+            }
+            fn yielding_body(&self) -> Option<YieldingBody> {
+                (**self).yielding_body()
+            }
+        }
+    };
+}
+
+macro_rules! adhesion_through {
+    ($ptr:ident) => {
+        impl<T: AdhesionLaw + ?Sized> AdhesionLaw for $ptr<T> {
+            fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
+                (**self).force(radius, delta, path)
+            }
+            fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
+                (**self).jumps(radius)
+            }
+            fn jump_in(&self, radius: f64) -> Result<f64, LawError> {
+                (**self).jump_in(radius)
+            }
+            fn kinks(&self, radius: f64) -> Result<Vec<Option<f64>>, LawError> {
+                (**self).kinks(radius)
+            }
+        }
+    };
+}
+
+// A law behind a pointer is a law: the model library keeps the laws a registry builds as
+// `Arc<dyn ... + Send + Sync>`.
+plasticity_through!(Box);
+plasticity_through!(Arc);
+adhesion_through!(Box);
+adhesion_through!(Arc);
 
 /// History of one asperity: the largest interference it has ever reached (m). A value
 /// at or below zero means it has never been pressed.
@@ -123,6 +271,28 @@ pub trait AsperityModel {
 
     /// Plastic state for a history.
     fn plastic_state(&self, history: AsperityHistory) -> PlasticState;
+
+    /// Values of delta_max (m) where the asperity's state or loading force jumps or bends:
+    /// delta_CP first (if it yields), then the plasticity law's declared breaks
+    /// ([`PlasticityLaw::breaks`]). Split points of quadratures over heights.
+    fn plastic_breaks(&self) -> Vec<f64> {
+        let dcp = self.delta_cp();
+        if dcp.is_finite() {
+            vec![dcp]
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// The omega range of the plasticity law's fits ([`PlasticityLaw::fit_range`]).
+    fn fit_range(&self) -> Option<(f64, f64)> {
+        None
+    }
+
+    /// The body that yields first ([`PlasticityLaw::yielding_body`]).
+    fn yielding_body(&self) -> Option<YieldingBody> {
+        None
+    }
 
     /// Jump-in and jump-out interferences (m) of an asperity with this history
     /// (including its permanent loss of height).

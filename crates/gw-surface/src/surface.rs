@@ -325,10 +325,10 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         let mut points = vec![edge];
         // History each asperity carries during this excursion.
         let hist_eff = |h: f64| a.load(self.history_at(history, h), h - excursion);
-        // Yield onset: delta_max(h) = delta_CP (increasing in h for a surface loaded by flats).
-        let dcp = a.delta_cp();
-        if dcp.is_finite() {
-            let y = |h: f64| -> Result<f64, GwError> { Ok(hist_eff(h).delta_max - dcp) };
+        // Yield onset and the plasticity law's declared breaks: delta_max(h) = b
+        // (increasing in h for a surface loaded by flats).
+        for b in a.plastic_breaks() {
+            let y = |h: f64| -> Result<f64, GwError> { Ok(hist_eff(h).delta_max - b) };
             if let Some(h_y) = self.edge("yield onset height", y, edge, top)? {
                 points.push(h_y);
             }
