@@ -101,72 +101,26 @@ fn law_file_message(file: &str, e: &contact_law::LawError) -> String {
     }
 }
 
-/// Whether a core error is a value outside its domain (bad input) rather than a solver
-/// that could not deliver.
-fn core_is_input(e: &CoreError) -> bool {
-    matches!(e, CoreError::Invalid { .. })
-}
-
-fn law_is_input(e: &LawError) -> bool {
-    match e {
-        LawError::Core(c) => core_is_input(c),
-        LawError::Law(_) => [
-            e.downcast_ref::<maugis_kim::MkError>()
-                .map(|m| matches!(m, maugis_kim::MkError::Core(c) if core_is_input(c))),
-            e.downcast_ref::<asperity_plastic::PlasticError>().map(
-                |p| !matches!(p, asperity_plastic::PlasticError::Core(c) if !core_is_input(c)),
-            ),
-        ]
-        .into_iter()
-        .flatten()
-        .any(|b| b),
-    }
-}
-
-/// Whether a calibration error is bad input (data, options, starting constants, a
-/// parameter the model refuses) rather than a fit that failed numerically.
-fn calib_is_input(e: &calibrate::CalibError) -> bool {
-    use calibrate::CalibError as C;
-    match e {
-        C::Data { .. }
-        | C::Io { .. }
-        | C::TooFewPoints { .. }
-        | C::Selection { .. }
-        | C::Start(_)
-        | C::Option { .. } => true,
-        C::Model { source, .. } | C::Overlay { source, .. } => law_is_input(source),
-        C::Svd { .. } => false,
-    }
-}
-
 impl Error {
     /// Exit status: 2 for bad input (scene, option, output path, a parameter a law
     /// refuses), 1 for a numerical failure.
     pub fn exit_code(&self) -> i32 {
+        use contact_core::{Categorized, Category};
         let input = match self {
             Error::InScene { source, .. } => return source.exit_code(),
             Error::LawFile { .. } => true,
             Error::Scene(_) | Error::Usage { .. } | Error::Write { .. } | Error::Plot { .. } => {
                 true
             }
-            Error::Core(e) => core_is_input(e),
-            Error::MaugisKim(maugis_kim::MkError::Core(e)) => core_is_input(e),
-            Error::MaugisKim(_) => false,
-            Error::Plastic(asperity_plastic::PlasticError::Core(e)) => core_is_input(e),
-            Error::Plastic(_) => true,
-            Error::Surface(gw_surface::GwError::Core(e)) => core_is_input(e),
-            Error::Surface(gw_surface::GwError::Asperity { source, .. }) => law_is_input(source),
-            Error::Surface(gw_surface::GwError::LawNotFinite { .. }) => false,
-            Error::Switch(switch_1d::SwitchError::Core(e)) => core_is_input(e),
-            Error::Switch(switch_1d::SwitchError::Surface(e)) => law_is_input(e),
-            Error::Switch(_) => false,
-            Error::Law(e) => law_is_input(e),
-            Error::Calibrate(e) => calib_is_input(e),
-            Error::Design(e) => !matches!(e, design_sweep::DesignError::ScanFailed { .. }),
-            Error::ContactLaw(e) => !matches!(
-                e,
-                contact_law::LawError::Source { .. } | contact_law::LawError::BadSource(_)
-            ),
+            Error::Core(e) => e.category() == Category::Input,
+            Error::MaugisKim(e) => e.category() == Category::Input,
+            Error::Plastic(e) => e.category() == Category::Input,
+            Error::Surface(e) => e.category() == Category::Input,
+            Error::Switch(e) => e.category() == Category::Input,
+            Error::Law(e) => e.category() == Category::Input,
+            Error::Calibrate(e) => e.category() == Category::Input,
+            Error::Design(e) => e.category() == Category::Input,
+            Error::ContactLaw(e) => e.is_input(),
         };
         if input {
             2

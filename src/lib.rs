@@ -17,6 +17,7 @@ pub mod commands;
 pub mod error;
 pub mod guards;
 pub mod model;
+pub mod output;
 pub mod plot;
 pub mod progress;
 pub mod render;

@@ -1,10 +1,10 @@
-//! How reports leave the program: formats, numbers with units that fit, warnings,
-//! standard output that survives a closed pipe, and output folders written atomically.
+//! How reports leave the program: formats, numbers with units that fit, warnings, and
+//! standard output that survives a closed pipe (files: [`crate::output`]).
 
 use crate::error::Error;
+pub use crate::output::{write_file, OutputSet};
 use serde::Serialize;
 use std::io::Write;
-use std::path::{Path, PathBuf};
 
 /// Output format of a subcommand.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -131,127 +131,6 @@ pub fn emit(text: &str) -> Result<(), Error> {
             source,
         }),
     }
-}
-
-/// Files of one run, written together or not at all: into a fresh folder beside the
-/// target, which then replaces the target by renames. The target may only hold files a
-/// run of the same command writes (`known`), so that nothing of an earlier run is left
-/// beside new results and nothing else is ever removed.
-#[derive(Debug)]
-pub struct OutputSet {
-    dir: PathBuf,
-    known: &'static [&'static str],
-    files: Vec<(String, Vec<u8>)>,
-}
-
-impl OutputSet {
-    /// A set for folder `dir` of a command that can write the files named in `known`.
-    pub fn new(dir: &Path, known: &'static [&'static str]) -> Self {
-        Self {
-            dir: dir.to_path_buf(),
-            known,
-            files: Vec::new(),
-        }
-    }
-
-    /// Adds a file (its name must be one of `known`).
-    pub fn add(&mut self, name: &str, bytes: impl Into<Vec<u8>>) {
-        debug_assert!(self.known.contains(&name), "{name} not declared");
-        self.files.push((name.to_string(), bytes.into()));
-    }
-
-    /// The names of the files added.
-    pub fn names(&self) -> Vec<String> {
-        self.files.iter().map(|f| f.0.clone()).collect()
-    }
-
-    /// Writes the set: all files appear together in `dir`, replacing what an earlier run
-    /// of the command left there.
-    pub fn commit(self) -> Result<Vec<PathBuf>, Error> {
-        let write = |path: &Path, source| Error::Write {
-            path: path.display().to_string(),
-            source,
-        };
-        if self.dir.exists() {
-            let entries = std::fs::read_dir(&self.dir).map_err(|e| write(&self.dir, e))?;
-            for entry in entries {
-                let entry = entry.map_err(|e| write(&self.dir, e))?;
-                let name = entry.file_name().to_string_lossy().to_string();
-                let is_file = entry.file_type().map(|t| t.is_file()).unwrap_or(false);
-                if !is_file || !self.known.contains(&name.as_str()) {
-                    return Err(write(
-                        &self.dir,
-                        std::io::Error::other(format!(
-                            "the folder holds `{name}`, which this command does not write; give an empty or new folder (it is replaced as a whole)"
-                        )),
-                    ));
-                }
-            }
-        }
-        let parent = match self.dir.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
-        std::fs::create_dir_all(&parent).map_err(|e| write(&parent, e))?;
-        let base = self
-            .dir
-            .file_name()
-            .map(|n| n.to_string_lossy().to_string())
-            .unwrap_or_else(|| "out".into());
-        let tag = format!("{}-{}", std::process::id(), nanos());
-        let staging = parent.join(format!(".{base}.new-{tag}"));
-        let retired = parent.join(format!(".{base}.old-{tag}"));
-        let result = (|| {
-            std::fs::create_dir(&staging).map_err(|e| write(&staging, e))?;
-            for (name, bytes) in &self.files {
-                let p = staging.join(name);
-                std::fs::write(&p, bytes).map_err(|e| write(&p, e))?;
-            }
-            if self.dir.exists() {
-                std::fs::rename(&self.dir, &retired).map_err(|e| write(&self.dir, e))?;
-            }
-            if let Err(e) = std::fs::rename(&staging, &self.dir) {
-                // put the earlier results back rather than leave nothing
-                let _ = std::fs::rename(&retired, &self.dir);
-                return Err(write(&self.dir, e));
-            }
-            let _ = std::fs::remove_dir_all(&retired);
-            Ok(())
-        })();
-        if result.is_err() {
-            let _ = std::fs::remove_dir_all(&staging);
-        }
-        result?;
-        Ok(self.files.iter().map(|f| self.dir.join(&f.0)).collect())
-    }
-}
-
-/// Writes one file atomically: into a temporary file beside it, then renamed over it.
-pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    let write = |source| Error::Write {
-        path: path.display().to_string(),
-        source,
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().to_string())
-        .ok_or_else(|| write(std::io::Error::other("not a file name")))?;
-    let tmp = path.with_file_name(format!(".{name}.new-{}-{}", std::process::id(), nanos()));
-    std::fs::write(&tmp, bytes).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        write(e)
-    })?;
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        write(e)
-    })
-}
-
-fn nanos() -> u128 {
-    std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_nanos())
-        .unwrap_or(0)
 }
 
 #[cfg(test)]

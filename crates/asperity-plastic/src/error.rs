@@ -1,8 +1,9 @@
-use contact_core::{CoreError, LawError};
+use contact_core::{Categorized, Category, CoreError, LawError};
 use thiserror::Error;
 
 /// Errors of the `asperity-plastic` crate.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum PlasticError {
     /// A parameter outside its domain, or a solver failure.
     #[error(transparent)]
@@ -20,6 +21,16 @@ pub enum PlasticError {
         /// What is allowed.
         allowed: &'static str,
     },
+}
+
+impl Categorized for PlasticError {
+    /// A pair that cannot yield and constants out of their domain are input.
+    fn category(&self) -> Category {
+        match self {
+            PlasticError::Core(c) => c.category(),
+            _ => Category::Input,
+        }
+    }
 }
 
 impl From<PlasticError> for LawError {

@@ -29,7 +29,7 @@ mod asperity;
 mod error;
 mod etsion_kadin;
 
-pub use asperity::{EffectiveSphere, ElastoPlasticAsperity, PullOff, PULL_OFF_TOLERANCE};
+pub use asperity::{EffectiveSphere, ElastoPlasticAsperity, PullOff, Reload, PULL_OFF_TOLERANCE};
 pub use error::PlasticError;
 pub use etsion_kadin::{
     EffectiveRadiusFit, Elastic, EtsionKadin, YieldModulus, YieldingBody, FIT_RANGE_MAX,

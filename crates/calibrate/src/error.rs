@@ -198,3 +198,23 @@ impl fmt::Display for DataProblem {
         }
     }
 }
+
+impl contact_core::Categorized for CalibError {
+    /// Data, options, starting constants and parameters the model refuses are input; a
+    /// fit that fails numerically is not.
+    fn category(&self) -> contact_core::Category {
+        use contact_core::Category;
+        match self {
+            CalibError::Data { .. }
+            | CalibError::Io { .. }
+            | CalibError::TooFewPoints { .. }
+            | CalibError::Selection { .. }
+            | CalibError::Start(_)
+            | CalibError::Option { .. } => Category::Input,
+            CalibError::Model { source, .. } | CalibError::Overlay { source, .. } => {
+                source.category()
+            }
+            CalibError::Svd { .. } => Category::Numerical,
+        }
+    }
+}

@@ -1,8 +1,29 @@
 use thiserror::Error;
 
+/// What kind of failure an error is: the input was outside what the model accepts, or a
+/// computation on valid input could not deliver. Front ends map it to their own signal
+/// (the command line: exit status 2 for input, 1 for numerical).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Category {
+    /// A value outside its domain, a file or option that is not what it must be.
+    Input,
+    /// A solver, a quadrature or a search that failed on valid input.
+    Numerical,
+}
+
+/// An error that knows its [`Category`]. Every crate's error type implements it, so the
+/// decision between bad input and a numerical failure is made where the error is made,
+/// not by whoever receives it.
+pub trait Categorized {
+    /// The error's category.
+    fn category(&self) -> Category;
+}
+
 /// Errors of `contact-core`: invalid input to a validated constructor, or a numeric
 /// adapter that could not deliver what it promised.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum CoreError {
     /// A parameter outside its physical domain.
     #[error("invalid {field} = {value:e}: must be {allowed}")]
@@ -59,28 +80,74 @@ pub enum CoreError {
 /// Error returned through the law traits. Each crate keeps its own error enum and
 /// converts it into this one at the trait boundary, so that laws from different crates
 /// (or from a user) compose without knowing each other's types; the original error stays
-/// reachable through [`std::error::Error::source`] and [`LawError::downcast_ref`].
+/// reachable through [`std::error::Error::source`] and [`LawError::downcast_ref`], and its
+/// [`Category`] travels with it.
 #[derive(Debug, Error)]
+#[non_exhaustive]
 pub enum LawError {
     /// An error of `contact-core` itself.
     #[error(transparent)]
     Core(#[from] CoreError),
     /// An error of a law implemented in another crate (or by a user).
-    #[error(transparent)]
-    Law(Box<dyn std::error::Error + Send + Sync + 'static>),
+    #[error("{source}")]
+    Law {
+        /// The law's own error.
+        source: Box<dyn std::error::Error + Send + Sync + 'static>,
+        /// Bad input or a numerical failure, as the law said.
+        category: Category,
+    },
 }
 
 impl LawError {
-    /// Wraps the error of a law crate.
-    pub fn law<E: std::error::Error + Send + Sync + 'static>(e: E) -> Self {
-        LawError::Law(Box::new(e))
+    /// Wraps the error of a law crate, keeping the category it gives itself.
+    pub fn law<E: std::error::Error + Categorized + Send + Sync + 'static>(e: E) -> Self {
+        let category = e.category();
+        LawError::Law {
+            source: Box::new(e),
+            category,
+        }
+    }
+
+    /// Wraps any error of a user's law as bad input (a parameter the law refuses).
+    pub fn input<E: Into<Box<dyn std::error::Error + Send + Sync + 'static>>>(e: E) -> Self {
+        LawError::Law {
+            source: e.into(),
+            category: Category::Input,
+        }
+    }
+
+    /// Wraps any error of a user's law as a numerical failure.
+    pub fn numerical<E: Into<Box<dyn std::error::Error + Send + Sync + 'static>>>(e: E) -> Self {
+        LawError::Law {
+            source: e.into(),
+            category: Category::Numerical,
+        }
     }
 
     /// The law crate's own error, if it is an `E`.
     pub fn downcast_ref<E: std::error::Error + 'static>(&self) -> Option<&E> {
         match self {
             LawError::Core(c) => (c as &dyn std::error::Error).downcast_ref(),
-            LawError::Law(b) => b.downcast_ref(),
+            LawError::Law { source, .. } => source.downcast_ref(),
+        }
+    }
+}
+
+impl Categorized for CoreError {
+    /// `Invalid` is input; a solver or quadrature that failed is numerical.
+    fn category(&self) -> Category {
+        match self {
+            CoreError::Invalid { .. } => Category::Input,
+            _ => Category::Numerical,
+        }
+    }
+}
+
+impl Categorized for LawError {
+    fn category(&self) -> Category {
+        match self {
+            LawError::Core(c) => c.category(),
+            LawError::Law { category, .. } => *category,
         }
     }
 }

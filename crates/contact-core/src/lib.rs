@@ -31,7 +31,7 @@ pub mod numeric;
 pub mod par;
 mod traits;
 
-pub use error::{finite, positive, CoreError, LawError};
+pub use error::{finite, positive, Categorized, Category, CoreError, LawError};
 pub use material::{paper, Material, MaterialProps, Pair};
 pub use traits::{
     AdhesionLaw, AsperityHistory, AsperityModel, Estimate, Jumps, LengthScales, Path, PlasticState,

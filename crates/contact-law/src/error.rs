@@ -84,3 +84,12 @@ pub(crate) fn fmt_num(v: f64) -> String {
         format!("{v}")
     }
 }
+
+impl LawError {
+    /// Whether this is bad input (a file, an argument, a query out of range) rather than a
+    /// law source that failed or misbehaved while tabulating (a numerical failure). The
+    /// crate depends on no model crate, so it states its category as a plain flag.
+    pub fn is_input(&self) -> bool {
+        !matches!(self, LawError::Source { .. } | LawError::BadSource(_))
+    }
+}

@@ -55,3 +55,13 @@ pub enum DesignError {
     #[error("csv: {0}")]
     Csv(String),
 }
+
+impl contact_core::Categorized for DesignError {
+    /// Every failure of a search on valid input is `ScanFailed`; the rest is input.
+    fn category(&self) -> contact_core::Category {
+        match self {
+            DesignError::ScanFailed { .. } => contact_core::Category::Numerical,
+            _ => contact_core::Category::Input,
+        }
+    }
+}

@@ -1,8 +1,9 @@
-use contact_core::{CoreError, LawError};
+use contact_core::{Categorized, Category, CoreError, LawError};
 use thiserror::Error;
 
 /// Errors of the `gw-surface` crate.
 #[derive(Debug, Error)]
+#[non_exhaustive]
 pub enum GwError {
     /// A parameter outside its domain, or a quadrature/root failure.
     #[error("surface: {0}")]
@@ -28,6 +29,18 @@ pub enum GwError {
         #[source]
         source: LawError,
     },
+}
+
+impl Categorized for GwError {
+    /// The asperity law's own category; a law returning a non-finite force is a numerical
+    /// failure.
+    fn category(&self) -> Category {
+        match self {
+            GwError::Core(c) => c.category(),
+            GwError::Asperity { source, .. } => source.category(),
+            GwError::LawNotFinite { .. } => Category::Numerical,
+        }
+    }
 }
 
 impl From<GwError> for LawError {

@@ -1,8 +1,9 @@
-use contact_core::{CoreError, LawError};
+use contact_core::{Categorized, Category, CoreError, LawError};
 use thiserror::Error;
 
 /// Errors of the `maugis-kim` crate.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum MkError {
     /// A parameter outside its domain, or a solver failure (bracket, convergence,
     /// non-finite value).
@@ -25,6 +26,16 @@ pub enum MkError {
         /// The interference asked (nondimensional).
         delta: f64,
     },
+}
+
+impl Categorized for MkError {
+    /// A parameter outside its domain is input; everything else is a solver's failure.
+    fn category(&self) -> Category {
+        match self {
+            MkError::Core(c) => c.category(),
+            _ => Category::Numerical,
+        }
+    }
 }
 
 impl From<MkError> for LawError {

@@ -1,8 +1,9 @@
-use contact_core::{CoreError, LawError};
+use contact_core::{Categorized, Category, CoreError, LawError};
 use thiserror::Error;
 
 /// Errors of the `switch-1d` crate.
 #[derive(Debug, Error)]
+#[non_exhaustive]
 pub enum SwitchError {
     /// A parameter outside its domain, or a root/minimum/quadrature failure.
     #[error("switch: {0}")]
@@ -20,4 +21,16 @@ pub enum SwitchError {
     /// The surface law failed.
     #[error("surface law: {0}")]
     Surface(#[from] LawError),
+}
+
+impl Categorized for SwitchError {
+    /// The surface law's own category; an impact the surface cannot absorb is a numerical
+    /// finding on valid input (the model has no end of impact there).
+    fn category(&self) -> Category {
+        match self {
+            SwitchError::Core(c) => c.category(),
+            SwitchError::Surface(e) => e.category(),
+            SwitchError::EnergyNotAbsorbed { .. } => Category::Numerical,
+        }
+    }
 }
