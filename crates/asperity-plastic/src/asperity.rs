@@ -152,7 +152,12 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
             return Vec::new();
         }
         let mut b = vec![dcp];
-        b.extend(self.plasticity.breaks().into_iter().filter(|x| x.is_finite() && *x > dcp));
+        b.extend(
+            self.plasticity
+                .breaks()
+                .into_iter()
+                .filter(|x| x.is_finite() && *x > dcp),
+        );
         b
     }
 

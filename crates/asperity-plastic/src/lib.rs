@@ -28,11 +28,16 @@ struct ReadmeDoctests;
 mod asperity;
 mod error;
 mod etsion_kadin;
+mod kogut_etsion;
+mod onset;
 
 pub use asperity::{EffectiveSphere, ElastoPlasticAsperity, PullOff, PULL_OFF_TOLERANCE};
 pub use error::PlasticError;
 pub use etsion_kadin::{
     EffectiveRadiusFit, Elastic, EtsionKadin, YieldModulus, YieldingBody, FIT_RANGE_MAX,
+};
+pub use kogut_etsion::{
+    KogutEtsion, YieldOnset, KE_FULLY_PLASTIC, KE_HARDNESS_FACTOR, KE_SECOND_REGIME,
 };
 
 pub use contact_core::{AdhesionLaw, AsperityHistory, AsperityModel, PlasticState, PlasticityLaw};
