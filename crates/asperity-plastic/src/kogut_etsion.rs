@@ -332,7 +332,7 @@ impl KogutEtsion {
         }
         let n = Self::unloading_exponent(omega);
         let x = (state.r_res / r_load).powf(1.0 / (2.0 * n - 3.0));
-        (x > 0.0 && x < 1.0).then(|| state.delta_res + x * (state.delta_max - state.delta_res))
+        (x > 0.0 && x < 1.0).then_some(state.delta_res + x * (state.delta_max - state.delta_res))
     }
 
     /// Values of omega inside a fit regime where the loading radius R_L crosses EKK's
@@ -474,5 +474,306 @@ impl PlasticityLaw for KogutEtsion {
 
     fn yielding_body(&self) -> Option<YieldingBody> {
         Some(self.body)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use contact_core::{paper, Material, MaterialProps};
+
+    /// Ru of Table 1 on a rigid flat.
+    fn ru(modulus: YieldModulus) -> KogutEtsion {
+        let m = Material::new(paper::RU).unwrap();
+        KogutEtsion::new(&Pair::new(m, None, paper::RADIUS).unwrap(), modulus).unwrap()
+    }
+
+    fn close(a: f64, b: f64, rel: f64) -> bool {
+        (a - b).abs() <= rel * b.abs()
+    }
+
+    // Reference values: docs/derivations/kogut_etsion.py (independent plain Python from the
+    // published formulas), block "critical_values_of_table_1_ru_by_hand".
+    #[test]
+    fn critical_values_of_table_1_ru_by_hand() {
+        let law = ru(YieldModulus::Composite);
+        assert!(close(law.delta_cp(), 1.4831702606020387e-09, 1e-12));
+        assert!(close(law.critical_force(), 6.862742594014353e-05, 1e-12));
+        assert!(close(law.critical_area(), 1.8638067178920893e-14, 1e-12));
+        // with E* in eq 1, P_c is also (2/3) pi C S_Y R delta_c (KE's Pc)
+        let s_y = paper::RU.yield_stress;
+        let pc_ke = 2.0 / 3.0 * PI * law.onset_coefficient() * s_y * paper::RADIUS * law.delta_cp();
+        assert!(close(law.critical_force(), pc_ke, 1e-12));
+        // as printed: delta_c larger by 1/(1 - nu^2)^2, P_c still the Hertz force at it
+        let printed = ru(YieldModulus::AsPrinted);
+        assert!(close(printed.delta_cp(), 1.791052120036274e-09, 1e-12));
+        assert!(close(
+            printed.critical_force(),
+            9.106962176111277e-05,
+            1e-12
+        ));
+    }
+
+    // KE 2002's fits evaluated by hand (docs/derivations/kogut_etsion.py, "fits at omega").
+    #[test]
+    fn published_fits_at_chosen_omega() {
+        let law = ru(YieldModulus::Composite);
+        let cases = [
+            (0.5, 0.3535533905932738, 0.5),
+            (1.0, 1.0, 1.0),
+            (2.0, 2.765699355727343, 2.0438688446929962),
+            (6.0, 13.234354282914214, 7.119717617744424),
+            (20.0, 61.56429636994453, 29.11442575554431),
+            (110.0, 530.1600481581794, 205.38270563435512),
+            (500.0, 2600.68229079456, 1000.0),
+        ];
+        for (w, p, a) in cases {
+            assert!(close(law.load_ratio(w), p, 1e-13), "P/Pc at {w}");
+            assert!(close(KogutEtsion::area_ratio(w), a, 1e-13), "A/Ac at {w}");
+        }
+        // just above the boundaries the upper branches hold
+        let up = |w: f64| w * (1.0 + 1e-15);
+        assert!(close(law.load_ratio(up(6.0)), 13.45652941016743, 1e-13));
+        assert!(close(
+            KogutEtsion::area_ratio(up(6.0)),
+            7.326375713731759,
+            1e-13
+        ));
+        assert!(close(law.load_ratio(up(110.0)), 572.1501039748032, 1e-13));
+        assert!(close(KogutEtsion::area_ratio(up(110.0)), 220.0, 1e-13));
+        assert_eq!(law.load_ratio(0.0), 0.0);
+        assert_eq!(law.load_ratio(-1.0), 0.0);
+        assert_eq!(law.load_ratio(f64::NAN), 0.0);
+    }
+
+    // The jumps of KE's fits at omega = 1 (+3 % force, -7 % area), 6 (+1.68 %, +2.9 %) and
+    // the fully plastic onset at 110 (+7.9 %, +7.1 %), by hand (docs/derivations).
+    #[test]
+    fn declared_jumps_have_the_published_sizes() {
+        let law = ru(YieldModulus::Composite);
+        let dcp = law.delta_cp();
+        let jump = |w: f64| {
+            let (lo, hi) = (w * dcp, w * dcp * (1.0 + 1e-13));
+            (
+                law.loading_force(hi) / law.loading_force(lo),
+                law.loading_contact_area(hi) / law.loading_contact_area(lo),
+            )
+        };
+        for (w, f, a) in [
+            (1.0, 1.03, 0.93),
+            (6.0, 1.0167877572644437, 1.0290261646715149),
+            (110.0, 1.0792026029922488, 1.071171008875831),
+        ] {
+            let (jf, ja) = jump(w);
+            assert!(close(jf, f, 1e-11), "force jump at {w}: {jf}");
+            assert!(close(ja, a, 1e-11), "area jump at {w}: {ja}");
+        }
+        let breaks = law.breaks();
+        assert!(breaks.contains(&(6.0 * dcp)) && breaks.contains(&(110.0 * dcp)));
+        // fully plastic: the mean pressure is the hardness 2.8 S_Y; just below, the two
+        // elastic-plastic fits give 2.779 S_Y
+        let s_y = paper::RU.yield_stress;
+        let p_mean = |d: f64| law.loading_force(d) / law.loading_contact_area(d) / s_y;
+        assert!(close(p_mean(200.0 * dcp), 2.8, 1e-12));
+        assert!(close(p_mean(110.0 * dcp), 2.7791619632276485, 1e-12));
+    }
+
+    // EKK's residual state and the derived loading radius and kink, by hand
+    // (docs/derivations/kogut_etsion.py, "omega ...: g n R_res/R R_L/R x_kink").
+    #[test]
+    fn ekk_residual_state_and_loading_radius_by_hand() {
+        let law = ru(YieldModulus::Composite);
+        let dcp = law.delta_cp();
+        let r = paper::RADIUS;
+        let cases = [
+            (
+                2.0,
+                0.0670611956165302,
+                1.46597703230979,
+                1.4534177428215027,
+                1.1774988128681594,
+                0.04532618208718485,
+            ),
+            (
+                10.0,
+                0.3781706758070352,
+                1.3899246562406167,
+                5.080759685393524,
+                2.736796309110313,
+                0.06019149621911988,
+            ),
+            (
+                34.4,
+                0.5739407241820761,
+                1.3342314535139188,
+                16.144152610238187,
+                4.73715172676422,
+                0.024765724270619054,
+            ),
+            (
+                100.0,
+                0.6943717275341187,
+                1.2879270333503976,
+                45.88835653932876,
+                7.738833294930415,
+                0.015047015659997106,
+            ),
+        ];
+        for (w, g, n, rres, rl, xk) in cases {
+            let dmax = w * dcp;
+            let st = law.state(dmax);
+            assert!(close(st.delta_res / dmax, g, 1e-12), "delta_res at {w}");
+            assert!(close(KogutEtsion::unloading_exponent(w), n, 1e-13));
+            assert!(close(st.r_res / r, rres, 1e-12), "R_res at {w}");
+            assert!(close(law.loading_radius(dmax) / r, rl, 1e-12), "R_L at {w}");
+            assert!(close(law.effective_radius(&st, dmax) / r, rl, 1e-12));
+            let k = law.unloading_kink(&st).unwrap();
+            assert!(close((k - st.delta_res) / (dmax - st.delta_res), xk, 1e-9));
+            assert_eq!(law.kinks(&st), vec![Some(k)]);
+            assert!(!st.extrapolated);
+        }
+    }
+
+    // EKK's residual state is the paper's eqs 4-5: the same as the Etsion-Kadin law's.
+    #[test]
+    fn residual_state_is_the_one_of_the_etsion_kadin_law_above_the_near_yield_band() {
+        let m = Material::new(paper::RU).unwrap();
+        let pair = Pair::new(m, None, paper::RADIUS).unwrap();
+        for modulus in [YieldModulus::Composite, YieldModulus::AsPrinted] {
+            let ke = KogutEtsion::new(&pair, modulus).unwrap();
+            let ek = crate::EtsionKadin::new(&pair, modulus).unwrap();
+            assert_eq!(ke.delta_cp(), ek.delta_cp());
+            for w in [1.2, 3.0, 17.0, 90.0] {
+                let (a, b) = (ke.state(w * ke.delta_cp()), ek.state(w * ek.delta_cp()));
+                assert!(close(a.delta_res, b.delta_res, 1e-14));
+                assert!(close(a.r_res, b.r_res, 1e-14));
+            }
+        }
+    }
+
+    // Near yield KE's +3 % makes R_L exceed EKK's R_res: for Ru up to omega = 1.11172
+    // (bisection by hand, docs/derivations); there r_res = R_L and R_eff = R_L throughout.
+    #[test]
+    fn the_near_yield_band_of_table_1_ru() {
+        let law = ru(YieldModulus::Composite);
+        let dcp = law.delta_cp();
+        let crossings = law.radius_crossings();
+        assert_eq!(crossings.len(), 1, "{crossings:?}");
+        assert!(close(crossings[0], 1.1117208130765417, 1e-12));
+        assert!(law.breaks().contains(&(crossings[0] * dcp)));
+        let inside = law.state(1.05 * dcp);
+        let r_load = law.loading_radius(1.05 * dcp);
+        assert_eq!(inside.r_res, r_load);
+        assert!(law.residual_radius_ratio(1.05) * paper::RADIUS < r_load);
+        assert_eq!(law.unloading_kink(&inside), None);
+        for x in [0.0, 0.3, 0.9, 1.0] {
+            let d = inside.delta_res + x * (inside.delta_max - inside.delta_res);
+            assert_eq!(law.effective_radius(&inside, d), r_load);
+        }
+        let outside = law.state(1.2 * dcp);
+        assert_eq!(
+            outside.r_res,
+            law.residual_radius_ratio(1.2) * paper::RADIUS
+        );
+        assert!(law.unloading_kink(&outside).is_some());
+    }
+
+    #[test]
+    fn kogut_etsion_2002_onset_uses_k_h() {
+        let m = Material::new(paper::RU).unwrap();
+        let pair = Pair::new(m, None, paper::RADIUS).unwrap();
+        let law =
+            KogutEtsion::with_onset(&pair, YieldModulus::Composite, YieldOnset::KogutEtsion2002)
+                .unwrap();
+        assert!(close(law.onset_coefficient(), 1.6156, 1e-14));
+        assert!(close(law.delta_cp(), 1.4843445345016118e-09, 1e-12));
+        assert_eq!(law.yield_onset().as_str(), "kogut_etsion_2002");
+        // fully plastic: P/Pc = 3 omega / K
+        assert!(close(
+            law.load_ratio(200.0),
+            3.0 * 200.0 / (0.454 + 0.41 * 0.3),
+            1e-14
+        ));
+    }
+
+    // A held-out second material: a steel-like sphere (E 200 GPa, nu 0.29, S_Y 1 GPa) on a
+    // Ru counter-surface that can yield too; the steel yields first (delta_c 1.17 nm against
+    // 13.9 nm). Values by hand, docs/derivations/kogut_etsion.py ("steel on Ru").
+    #[test]
+    fn the_body_that_yields_first_governs() {
+        let steel = Material::new(MaterialProps {
+            youngs_modulus: 200e9,
+            poisson_ratio: 0.29,
+            yield_stress: 1e9,
+        })
+        .unwrap();
+        let ru = Material::new(paper::RU).unwrap();
+        let pair = Pair::new(ru, Some(steel), 4e-6).unwrap();
+        let law = KogutEtsion::new(&pair, YieldModulus::Composite).unwrap();
+        assert_eq!(law.yielding_body(), YieldingBody::Counter);
+        assert!(close(law.delta_cp(), 1.1725261870187222e-09, 1e-12));
+        for (w, p, dres, rres, rl) in [
+            (
+                3.0,
+                7.76143011236164e-05,
+                4.949893708670141e-10,
+                7.247713366308079e-06,
+                5.672314407221471e-06,
+            ),
+            (
+                40.0,
+                0.002326679392462151,
+                2.7835776816545148e-08,
+                6.733041064300753e-05,
+                2.0312263793191807e-05,
+            ),
+        ] {
+            let d = w * law.delta_cp();
+            let st = law.state(d);
+            assert!(close(law.loading_force(d), p, 1e-12));
+            assert!(close(st.delta_res, dres, 1e-12));
+            assert!(close(st.r_res, rres, 1e-12));
+            assert!(close(law.loading_radius(d), rl, 1e-12));
+        }
+        let rigid_like = Material::new(MaterialProps {
+            yield_stress: f64::INFINITY,
+            ..paper::RU
+        })
+        .unwrap();
+        assert!(matches!(
+            KogutEtsion::new(
+                &Pair::new(rigid_like, None, 4e-6).unwrap(),
+                YieldModulus::AsPrinted
+            ),
+            Err(PlasticError::NeverYields)
+        ));
+    }
+
+    #[test]
+    fn below_yield_the_asperity_is_untouched() {
+        let law = ru(YieldModulus::AsPrinted);
+        let dcp = law.delta_cp();
+        for dmax in [0.0, -1e-9, 0.5 * dcp, dcp, f64::NAN] {
+            let st = law.state(dmax);
+            assert_eq!(st.delta_res, 0.0);
+            assert_eq!(st.r_res, paper::RADIUS);
+            assert!(!st.extrapolated);
+            assert_eq!(law.effective_radius(&st, 0.3 * dcp), paper::RADIUS);
+            assert_eq!(law.kinks(&st), vec![None]);
+        }
+        assert_eq!(law.loading_radius(dcp), paper::RADIUS);
+    }
+
+    #[test]
+    fn extrapolation_is_flagged_beyond_the_fit_range() {
+        let law = ru(YieldModulus::Composite);
+        let dcp = law.delta_cp();
+        assert!(!law.state(110.0 * dcp).extrapolated);
+        assert!(law.state(110.5 * dcp).extrapolated);
+        assert_eq!(law.fit_range(), Some((1.0, 110.0)));
+        assert_eq!(
+            PlasticityLaw::yielding_body(&law),
+            Some(YieldingBody::Asperity)
+        );
     }
 }
