@@ -40,7 +40,7 @@ pub enum YieldOnset {
     PaperEq1,
     /// Kogut & Etsion's own K H / S_Y = 2.8 (0.454 + 0.41 nu) (their delta_c with
     /// K = 0.454 + 0.41 nu of Chang, Etsion & Bogy 1987 and H = 2.8 S_Y). Within 0.04 % of
-    /// C_v at nu = 0.3; 1.9 % below it at nu = 0, 1.1 % at nu = 0.5.
+    /// C_v at nu = 0.3; 1.9 % below it at nu = 0, 1.4 % at nu = 0.5.
     KogutEtsion2002,
 }
 

@@ -5,6 +5,9 @@
 //!   modulus stated: [`YieldModulus`]), residual height and radius after unloading (eqs 4-5,
 //!   Etsion, Kligerman & Kadin 2005) and the effective radius at the current interference
 //!   (eqs 12-13, constants [`EffectiveRadiusFit`]).
+//! * [`KogutEtsion`]: a second law family, Kogut & Etsion's (2002) loading force and area
+//!   with Etsion, Kligerman & Kadin's (2005) residual state and unloading force, the radius
+//!   the adhesion law sees derived from the published forces (`docs/theory.md` 2.7).
 //! * [`Elastic`]: never yields.
 //! * [`ElastoPlasticAsperity`]: any [`PlasticityLaw`] composed with any
 //!   [`AdhesionLaw`], implementing [`AsperityModel`], with its pull-off.
