@@ -14,7 +14,7 @@ section 2.7 (plain Python, double precision, no shared code).
     R_res/R = 1 + 1.275 (S_Y/E)^0.216 (omega - 1)
     P/Pmax = x^n, x = (delta - delta_res)/(delta_max - delta_res), n = 1.5 omega^-0.0331
   Derived (theory.md 2.7): R_L = [3 P / (4 E* (delta_max - delta_res)^1.5)]^2,
-    r_res = max(R_res, R_L), R_eff(x) = min(R_L x^(2n-3), r_res).
+    R_eff(x) = min(R_L x^(2n-3), R_res) where R_L < R_res, else R_res + (R_L - R_res) x.
 
 Run: python3 docs/derivations/kogut_etsion.py
 Each block names the test that pins its numbers.
@@ -107,8 +107,7 @@ print("mean pressure / S_Y just below 110:", repr(PC * p_ratio(110, C) / (pi * R
 for w in (2.0, 10.0, 34.4, 100.0):
     RL = p_ratio(w, C) ** 2 / (w * (1 - g(w))) ** 3
     Rres = 1 + K_RES * (w - 1)
-    rr = max(RL, Rres)
-    x_k = (rr / RL) ** (1 / (2 * n_exp(w) - 3)) if rr > RL else None
+    x_k = (Rres / RL) ** (1 / (2 * n_exp(w) - 3)) if Rres > RL else None
     print(f"omega {w}: g {g(w)!r} n {n_exp(w)!r} R_res/R {Rres!r} R_L/R {RL!r} x_kink {x_k!r}")
 
 # --- tests/kogut_etsion.rs: composed_asperity_reproduces_ke_loading_and_ekk_unloading -
@@ -117,7 +116,8 @@ w = 10.0
 dmax = w * DC
 dres = g(w) * dmax
 RL = R * p_ratio(w, C) ** 2 / (w * (1 - g(w))) ** 3
-rr = max(RL, R * (1 + K_RES * (w - 1)))
+rr = R * (1 + K_RES * (w - 1))
+assert RL < rr
 n = n_exp(w)
 K = 4 / 3 * ES
 def f_unload(x):
@@ -166,4 +166,4 @@ PC2 = 4 / 3 * ES2 * sqrt(R) * d_steel ** 1.5
 for w in (3.0, 40.0):
     RL2 = R * p_ratio(w, cv(NU2)) ** 2 / (w * (1 - g(w))) ** 3
     print(f"steel omega {w}: P {PC2 * p_ratio(w, cv(NU2))!r} delta_res {g(w) * w * d_steel!r} "
-          f"r_res {max(RL2, R * (1 + K2 * (w - 1)))!r} R_L {RL2!r}")
+          f"r_res {R * (1 + K2 * (w - 1))!r} R_L {RL2!r}")

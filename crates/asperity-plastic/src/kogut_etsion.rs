@@ -78,10 +78,10 @@ impl YieldOnset {
 /// * **Effective radius** (derived; the adhesion law sees a Hertz sphere of radius R_eff at
 ///   delta - delta_res): R_L = [3 P(delta_max) / (4 E* (delta_max - delta_res)^(3/2))]^2
 ///   on loading, so that Hertz reproduces Kogut-Etsion's force; on unloading
-///   R_eff = min(R_L x^(2n - 3), r_res), which reproduces EKK's force where R_L x^(2n-3)
-///   is below r_res and is the residual profile's radius below that kink;
-///   r_res = max(R_res, R_L) (the two fits contradict each other near yield, where
-///   Kogut-Etsion's 3 % jump makes R_L > R_res).
+///   R_eff = min(R_L x^(2n - 3), R_res), which reproduces EKK's force where R_L x^(2n-3)
+///   is below R_res and is the residual profile's radius below that kink. Where the two
+///   fits contradict each other, R_L >= R_res (near yield, from Kogut-Etsion's +3 %),
+///   R_eff = R_res + (R_L - R_res) x, linear between the two published radii.
 ///
 /// The loading force jumps at omega = 1 (+3 %), 6 (+1.68 %) and 110 (+7.9 %), declared as
 /// [`PlasticityLaw::breaks`]; beyond omega = 110 the state is flagged `extrapolated`.
@@ -320,7 +320,7 @@ impl KogutEtsion {
 
     /// The interference (m) where R_eff = R_L x^(2n - 3) reaches `state.r_res` on the way
     /// down, x = (r_res/R_L)^(1/(2n - 3)): a kink of R_eff(delta). `None` below yield and
-    /// where R_L >= EKK's R_res (R_eff = R_L all the way down).
+    /// where R_L >= EKK's R_res (R_eff then linear in x, no kink).
     pub fn unloading_kink(&self, state: &PlasticState) -> Option<f64> {
         let omega = self.omega(state.delta_max);
         if !(omega > 1.0) {
@@ -336,8 +336,8 @@ impl KogutEtsion {
     }
 
     /// Values of omega inside a fit regime where the loading radius R_L crosses EKK's
-    /// residual radius R_res (where r_res = max(R_res, R_L) and the kink of R_eff appear
-    /// or vanish), ascending.
+    /// residual radius R_res (where the form of R_eff changes and its kink appears or
+    /// vanishes), ascending.
     pub fn radius_crossings(&self) -> Vec<f64> {
         self.crossings
             .iter()
@@ -410,8 +410,8 @@ impl PlasticityLaw for KogutEtsion {
         self.delta_cp
     }
 
-    /// delta_res from EKK ([`KogutEtsion::residual_ratio`]); r_res = max(R_res, R_L)
-    /// with EKK's R_res and the loading radius R_L; `extrapolated` beyond omega = 110.
+    /// delta_res and R_res from EKK ([`KogutEtsion::residual_ratio`],
+    /// [`KogutEtsion::residual_radius_ratio`]); `extrapolated` beyond omega = 110.
     fn state(&self, delta_max: f64) -> PlasticState {
         let omega = self.omega(delta_max);
         if !(omega > 1.0) {
@@ -422,32 +422,39 @@ impl PlasticityLaw for KogutEtsion {
                 extrapolated: false,
             };
         }
-        let r_res = self.residual_radius_ratio(omega);
-        let r_load = self.loading_radius_ratio(omega);
         PlasticState {
             delta_max,
             delta_res: delta_max * Self::residual_ratio(omega),
-            r_res: self.radius * r_res.max(r_load),
+            r_res: self.radius * self.residual_radius_ratio(omega),
             extrapolated: omega > KE_FULLY_PLASTIC,
         }
     }
 
     /// R_eff = min(R_L x^(2n - 3), r_res), x = (delta - delta_res)/(delta_max - delta_res)
-    /// capped at 1: R_L at delta_max, r_res at and below delta_res; R below yield.
+    /// capped at 1; where R_L >= r_res, R_eff = r_res + (R_L - r_res) x. R_L at and above
+    /// delta_max, r_res at and below delta_res; R below yield.
     fn effective_radius(&self, state: &PlasticState, delta: f64) -> f64 {
         let omega = self.omega(state.delta_max);
         let span = state.delta_max - state.delta_res;
         if !(omega > 1.0) || !(delta > state.delta_res) || !(span > 0.0) {
             return state.r_res;
         }
-        let x = ((delta - state.delta_res) / span).min(1.0);
         let r_load = self.loading_radius(state.delta_max);
-        let n = Self::unloading_exponent(omega);
-        (r_load * x.powf(2.0 * n - 3.0)).min(state.r_res)
+        let x = (delta - state.delta_res) / span;
+        if x >= 1.0 {
+            return r_load;
+        }
+        if r_load < state.r_res {
+            let n = Self::unloading_exponent(omega);
+            (r_load * x.powf(2.0 * n - 3.0)).min(state.r_res)
+        } else {
+            state.r_res + (r_load - state.r_res) * x
+        }
     }
 
     /// 6 delta_c and 110 delta_c, where the loading force jumps, and the delta_max where
-    /// R_L crosses EKK's R_res ([`KogutEtsion::radius_crossings`]), where the state bends.
+    /// R_L crosses EKK's R_res ([`KogutEtsion::radius_crossings`]), where R_eff changes
+    /// form.
     fn breaks(&self) -> Vec<f64> {
         let mut b = vec![
             KE_SECOND_REGIME * self.delta_cp,
@@ -636,23 +643,25 @@ mod tests {
 
     // EKK's residual state is the paper's eqs 4-5: the same as the Etsion-Kadin law's.
     #[test]
-    fn residual_state_is_the_one_of_the_etsion_kadin_law_above_the_near_yield_band() {
+    fn residual_state_is_the_one_of_the_etsion_kadin_law() {
         let m = Material::new(paper::RU).unwrap();
         let pair = Pair::new(m, None, paper::RADIUS).unwrap();
         for modulus in [YieldModulus::Composite, YieldModulus::AsPrinted] {
             let ke = KogutEtsion::new(&pair, modulus).unwrap();
             let ek = crate::EtsionKadin::new(&pair, modulus).unwrap();
             assert_eq!(ke.delta_cp(), ek.delta_cp());
-            for w in [1.2, 3.0, 17.0, 90.0] {
+            for w in [1.0 + 1e-6, 1.05, 1.2, 3.0, 17.0, 90.0, 500.0] {
                 let (a, b) = (ke.state(w * ke.delta_cp()), ek.state(w * ek.delta_cp()));
                 assert!(close(a.delta_res, b.delta_res, 1e-14));
                 assert!(close(a.r_res, b.r_res, 1e-14));
+                assert_eq!(a.extrapolated, b.extrapolated);
             }
         }
     }
 
     // Near yield KE's +3 % makes R_L exceed EKK's R_res: for Ru up to omega = 1.11172
-    // (bisection by hand, docs/derivations); there r_res = R_L and R_eff = R_L throughout.
+    // (bisection by hand, docs/derivations); there R_eff is linear in x from EKK's R_res
+    // (x = 0) to R_L (x = 1), and has no interior kink.
     #[test]
     fn the_near_yield_band_of_table_1_ru() {
         let law = ru(YieldModulus::Composite);
@@ -663,19 +672,29 @@ mod tests {
         assert!(law.breaks().contains(&(crossings[0] * dcp)));
         let inside = law.state(1.05 * dcp);
         let r_load = law.loading_radius(1.05 * dcp);
-        assert_eq!(inside.r_res, r_load);
-        assert!(law.residual_radius_ratio(1.05) * paper::RADIUS < r_load);
+        let r_res = law.residual_radius_ratio(1.05) * paper::RADIUS;
+        assert_eq!(inside.r_res, r_res);
+        assert!(r_res < r_load);
         assert_eq!(law.unloading_kink(&inside), None);
-        for x in [0.0, 0.3, 0.9, 1.0] {
+        assert_eq!(law.kinks(&inside), vec![None]);
+        for x in [0.0, 0.3, 0.9] {
             let d = inside.delta_res + x * (inside.delta_max - inside.delta_res);
-            assert_eq!(law.effective_radius(&inside, d), r_load);
+            let r = law.effective_radius(&inside, d);
+            assert!(close(r, r_res + (r_load - r_res) * x, 1e-14), "x {x}: {r}");
         }
+        assert_eq!(law.effective_radius(&inside, inside.delta_max), r_load);
         let outside = law.state(1.2 * dcp);
-        assert_eq!(
-            outside.r_res,
-            law.residual_radius_ratio(1.2) * paper::RADIUS
-        );
         assert!(law.unloading_kink(&outside).is_some());
+        // the two forms meet at the crossing: continuous in delta_max there
+        let w = crossings[0];
+        for x in [0.1, 0.5, 0.9] {
+            let r_at = |w: f64| {
+                let st = law.state(w * dcp);
+                law.effective_radius(&st, st.delta_res + x * (st.delta_max - st.delta_res))
+                    / paper::RADIUS
+            };
+            assert!((r_at(w * (1.0 - 1e-9)) - r_at(w * (1.0 + 1e-9))).abs() < 1e-7);
+        }
     }
 
     #[test]
