@@ -1,6 +1,7 @@
 use crate::error::PlasticError;
+use crate::onset;
 pub use contact_core::YieldingBody;
-use contact_core::{positive, Material, Pair, PlasticState, PlasticityLaw};
+use contact_core::{positive, Pair, PlasticState, PlasticityLaw};
 use std::f64::consts::PI;
 
 /// Upper end of delta_max/delta_CP covered by the finite-element fits of eqs 4-5
@@ -157,43 +158,15 @@ impl EtsionKadin {
     /// delta_CP (the one that yields first) governs: its S_Y, nu (in C_v) and E (in eq 1
     /// as printed, and in S_Y/E of eqs 5 and 12).
     pub fn new(pair: &Pair, modulus: YieldModulus) -> Result<Self, PlasticError> {
-        let onset = |m: &Material| -> Option<(f64, f64)> {
-            let s_y = m.yield_stress();
-            if !s_y.is_finite() {
-                return None;
-            }
-            let c_v = 1.295 * (0.736 * m.poisson_ratio()).exp();
-            let e = match modulus {
-                YieldModulus::Composite => pair.e_star(),
-                YieldModulus::AsPrinted => m.youngs_modulus(),
-            };
-            let root = PI * c_v * s_y / (2.0 * e);
-            Some((pair.radius() * root * root, c_v))
-        };
-        let first = onset(pair.asperity()).map(|o| (o, YieldingBody::Asperity, *pair.asperity()));
-        let second = pair
-            .counter()
-            .and_then(|m| onset(m).map(|o| (o, YieldingBody::Counter, *m)));
-        let ((delta_cp, c_v), body, m) = match (first, second) {
-            (Some(a), Some(b)) => {
-                if b.0 .0 < a.0 .0 {
-                    b
-                } else {
-                    a
-                }
-            }
-            (Some(a), None) => a,
-            (None, Some(b)) => b,
-            (None, None) => return Err(PlasticError::NeverYields),
-        };
-        positive("delta_cp", delta_cp)?;
+        let o = onset::governing(pair, modulus, |nu| 1.295 * (0.736 * nu).exp())?;
+        let m = o.material;
         Ok(Self {
             radius: pair.radius(),
-            delta_cp,
+            delta_cp: o.delta_cp,
             k_res: 1.275 * (m.yield_stress() / m.youngs_modulus()).powf(0.216),
-            c_v,
+            c_v: o.coefficient,
             yield_stress: m.yield_stress(),
-            body,
+            body: o.body,
             modulus,
             fit: EffectiveRadiusFit::PAPER,
         })
@@ -363,7 +336,7 @@ impl PlasticityLaw for Elastic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use contact_core::{paper, MaterialProps};
+    use contact_core::{paper, Material, MaterialProps};
 
     /// Ru of Table 1 on a rigid flat.
     fn ru(modulus: YieldModulus) -> EtsionKadin {

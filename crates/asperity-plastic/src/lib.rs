@@ -5,6 +5,9 @@
 //!   modulus stated: [`YieldModulus`]), residual height and radius after unloading (eqs 4-5,
 //!   Etsion, Kligerman & Kadin 2005) and the effective radius at the current interference
 //!   (eqs 12-13, constants [`EffectiveRadiusFit`]).
+//! * [`KogutEtsion`]: a second law family, Kogut & Etsion's (2002) loading force and area
+//!   with Etsion, Kligerman & Kadin's (2005) residual state and unloading force, the radius
+//!   the adhesion law sees derived from the published forces (`docs/theory.md` 2.7).
 //! * [`Elastic`]: never yields.
 //! * [`ElastoPlasticAsperity`]: any [`PlasticityLaw`] composed with any
 //!   [`AdhesionLaw`], implementing [`AsperityModel`], with its pull-off.
@@ -28,11 +31,16 @@ struct ReadmeDoctests;
 mod asperity;
 mod error;
 mod etsion_kadin;
+mod kogut_etsion;
+mod onset;
 
 pub use asperity::{EffectiveSphere, ElastoPlasticAsperity, PullOff, Reload, PULL_OFF_TOLERANCE};
 pub use error::PlasticError;
 pub use etsion_kadin::{
     EffectiveRadiusFit, Elastic, EtsionKadin, YieldModulus, YieldingBody, FIT_RANGE_MAX,
+};
+pub use kogut_etsion::{
+    KogutEtsion, YieldOnset, KE_FULLY_PLASTIC, KE_HARDNESS_FACTOR, KE_SECOND_REGIME,
 };
 
 pub use contact_core::{AdhesionLaw, AsperityHistory, AsperityModel, PlasticState, PlasticityLaw};
