@@ -1,16 +1,20 @@
 //! The `stiction` command line: clap definitions and a short dispatch. Exit status: 0
-//! success, 2 bad input, 1 numerical failure. Each subcommand's options are its command
-//! struct (in `commands/`): a new subcommand is one module and one variant here.
+//! success, 2 bad input, 1 numerical failure, 3 a result outside the model's validity
+//! under `--strict`. Each subcommand's options are its command struct (in `commands/`): a
+//! new subcommand is one module and one variant here.
+//!
+//! A program of one's own, built on this crate, registers its own laws and runs every
+//! command with them through [`main_with`] (`examples/user_law.rs`).
 
 use crate::commands::{
-    self, asperity::AsperityCommand, calibrate::CalibrateCommand, design::DesignCommand,
-    law::LawCommand, md::MdCommand, print::SceneCommand, surface::SurfaceCommand,
-    switch::SwitchCommand,
+    asperity::AsperityCommand, calibrate::CalibrateCommand, design::DesignCommand, law::LawCommand,
+    md::MdCommand, print::SceneCommand, surface::SurfaceCommand, switch::SwitchCommand, Ctx,
 };
 use crate::error::Error;
 use crate::render;
 use clap::{Parser, Subcommand};
 use std::ffi::OsString;
+use stiction_model::laws::LawRegistry;
 
 /// The command line.
 #[derive(Parser, Debug)]
@@ -20,7 +24,8 @@ use std::ffi::OsString;
     about = "Adhesive contact of elasto-plastic rough surfaces and in-use stiction of a MEMS micro-switch",
     long_about = "Adhesive contact of elasto-plastic rough surfaces and in-use stiction of a MEMS micro-switch.\n\n\
                   Without a subcommand, runs the paper's micro-switch scene (Fig 4) and writes out/.\n\
-                  All scene values and outputs are SI (m, N, Pa, J/m^2) unless a column says otherwise."
+                  All scene values and outputs are SI (m, N, Pa, J/m^2) unless a column says otherwise.\n\
+                  Exit status: 0 success, 2 bad input, 1 numerical failure, 3 outside the model's validity with --strict."
 )]
 pub struct Cli {
     /// The subcommand (the paper's switch scene if none).
@@ -42,7 +47,7 @@ pub enum Command {
     /// Fit the effective-radius constants of eq 13 to finite-element curves of one asperity.
     Calibrate(CalibrateCommand),
     /// The rough surface's contact law p(d; d_min, path) tabulated for an FE code (law.json,
-    /// law.csv); `law eval` evaluates a law file at one point.
+    /// law.csv); `law eval` evaluates a law file.
     Law(LawCommand),
     /// Print an embedded scene as TOML, with every accepted key, to start a scene from.
     Scene(SceneCommand),
@@ -51,18 +56,31 @@ pub enum Command {
     Design(DesignCommand),
 }
 
-/// Runs the CLI on `args` and returns the exit status.
+/// Runs the CLI on `args` with the built-in laws and returns the exit status.
 pub fn main_with_args<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
+    main_with(args, &LawRegistry::builtin())
+}
+
+/// Runs the CLI on `args` with the laws of `registry` (a user's own laws registered
+/// beside the built-in ones) and returns the exit status.
+pub fn main_with<I: IntoIterator<Item = OsString>>(args: I, registry: &LawRegistry) -> i32 {
     let cli = match Cli::try_parse_from(args) {
         Ok(c) => c,
         Err(e) => {
-            // help and version go to stdout (status 0), usage errors to stderr (status 2);
-            // a closed stream is not worth a panic either way
-            let _ = e.print();
-            return if e.use_stderr() { 2 } else { 0 };
+            // help and version go to stdout (status 0 unless it cannot be written),
+            // usage errors to stderr (status 2)
+            let printed = e.print();
+            return if e.use_stderr() {
+                2
+            } else if printed.is_err() {
+                1
+            } else {
+                0
+            };
         }
     };
-    match execute(cli.command).and_then(|text| render::emit(&text)) {
+    let ctx = Ctx { registry };
+    match execute(cli.command, ctx).and_then(|text| render::emit(&text)) {
         Ok(()) => 0,
         Err(e) => {
             eprintln!("error: {e}");
@@ -72,15 +90,15 @@ pub fn main_with_args<I: IntoIterator<Item = OsString>>(args: I) -> i32 {
 }
 
 /// Runs one command and returns what it prints on standard output.
-pub fn execute(command: Option<Command>) -> Result<String, Error> {
+pub fn execute(command: Option<Command>, ctx: Ctx) -> Result<String, Error> {
     match command.unwrap_or(Command::Switch(SwitchCommand::main_job())) {
         Command::Md(c) => c.execute(),
-        Command::Asperity(c) => commands::pipeline(&c),
-        Command::Surface(c) => commands::pipeline(&c),
-        Command::Switch(c) => commands::pipeline(&c),
-        Command::Calibrate(c) => c.execute(),
-        Command::Law(c) => c.execute(),
+        Command::Asperity(c) => c.execute(ctx),
+        Command::Surface(c) => c.execute(ctx),
+        Command::Switch(c) => c.execute(ctx),
+        Command::Calibrate(c) => c.execute(ctx),
+        Command::Law(c) => c.execute(ctx),
         Command::Scene(c) => Ok(c.execute()),
-        Command::Design(c) => c.execute(),
+        Command::Design(c) => c.execute(ctx),
     }
 }

@@ -1,15 +1,18 @@
-//! The one error type of the root package: every crate's error kept typed, and the exit
-//! status chosen by variant (2: bad input, 1: a numerical failure).
+//! The one error type of the command line: the model library's error kept typed, plus what
+//! only a command line has (options, output files, plots). The exit status comes from the
+//! error's category, decided where the error was made: 2 bad input, 1 numerical failure;
+//! 3 when `--strict` finds a result outside the model's validity.
 
-use crate::scene::SceneError;
-use contact_core::{CoreError, LawError};
+use contact_core::{Categorized, Category};
+use stiction_model::{ModelError, SceneError};
 
 /// Why a command failed.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
-    /// A scene file or value.
+    /// The model library (scene, argument, laws, numerics).
     #[error(transparent)]
-    Scene(#[from] SceneError),
+    Model(#[from] ModelError),
     /// A command-line option outside its domain or in conflict with another.
     #[error("invalid {option}: {message}")]
     Usage {
@@ -35,33 +38,6 @@ pub enum Error {
         /// Why.
         message: String,
     },
-    /// `contact-core`.
-    #[error(transparent)]
-    Core(#[from] CoreError),
-    /// `maugis-kim`.
-    #[error(transparent)]
-    MaugisKim(#[from] maugis_kim::MkError),
-    /// `asperity-plastic`.
-    #[error(transparent)]
-    Plastic(#[from] asperity_plastic::PlasticError),
-    /// `gw-surface`.
-    #[error(transparent)]
-    Surface(#[from] gw_surface::GwError),
-    /// `switch-1d`.
-    #[error(transparent)]
-    Switch(#[from] switch_1d::SwitchError),
-    /// A law through the trait seam.
-    #[error(transparent)]
-    Law(#[from] LawError),
-    /// `design-sweep`.
-    #[error(transparent)]
-    Design(#[from] design_sweep::DesignError),
-    /// `contact-law`.
-    #[error(transparent)]
-    ContactLaw(#[from] contact_law::LawError),
-    /// `calibrate`: finite-element data (naming line and column), options, or the fit.
-    #[error(transparent)]
-    Calibrate(#[from] calibrate::CalibError),
     /// A law file that cannot be read or is not a valid `law.json` (`stiction law eval`).
     #[error("{}", law_file_message(file, source))]
     LawFile {
@@ -71,14 +47,34 @@ pub enum Error {
         #[source]
         source: contact_law::LawError,
     },
-    /// An error while running a scene, with the scene's file.
-    #[error("{file}: {source}")]
-    InScene {
-        /// The scene file.
-        file: String,
-        /// What went wrong.
-        source: Box<Error>,
-    },
+    /// `--strict`: the result lies outside the model's validity (it was written all the
+    /// same).
+    #[error("--strict: {0}")]
+    Strict(String),
+}
+
+impl From<SceneError> for Error {
+    fn from(e: SceneError) -> Self {
+        Error::Model(e.into())
+    }
+}
+
+impl From<contact_law::LawError> for Error {
+    fn from(e: contact_law::LawError) -> Self {
+        Error::Model(e.into())
+    }
+}
+
+impl From<design_sweep::DesignError> for Error {
+    fn from(e: design_sweep::DesignError) -> Self {
+        Error::Model(e.into())
+    }
+}
+
+impl From<calibrate::CalibError> for Error {
+    fn from(e: calibrate::CalibError) -> Self {
+        Error::Model(e.into())
+    }
 }
 
 /// "law file FILE: why" (an I/O error names the file once).
@@ -103,48 +99,19 @@ fn law_file_message(file: &str, e: &contact_law::LawError) -> String {
 
 impl Error {
     /// Exit status: 2 for bad input (scene, option, output path, a parameter a law
-    /// refuses), 1 for a numerical failure.
+    /// refuses), 1 for a numerical failure, 3 for a result outside the model's validity
+    /// under `--strict`.
     pub fn exit_code(&self) -> i32 {
-        use contact_core::{Categorized, Category};
-        let input = match self {
-            Error::InScene { source, .. } => return source.exit_code(),
-            Error::LawFile { .. } => true,
-            Error::Scene(_) | Error::Usage { .. } | Error::Write { .. } | Error::Plot { .. } => {
-                true
-            }
-            Error::Core(e) => e.category() == Category::Input,
-            Error::MaugisKim(e) => e.category() == Category::Input,
-            Error::Plastic(e) => e.category() == Category::Input,
-            Error::Surface(e) => e.category() == Category::Input,
-            Error::Switch(e) => e.category() == Category::Input,
-            Error::Law(e) => e.category() == Category::Input,
-            Error::Calibrate(e) => e.category() == Category::Input,
-            Error::Design(e) => e.category() == Category::Input,
-            Error::ContactLaw(e) => e.is_input(),
-        };
-        if input {
-            2
-        } else {
-            1
-        }
-    }
-
-    /// The error itself, without the scene file it is reported in.
-    pub fn cause(&self) -> &Error {
         match self {
-            Error::InScene { source, .. } => source.cause(),
-            e => e,
-        }
-    }
-
-    /// The same error, naming the scene it came from (scene errors name it already).
-    pub fn in_scene(self, file: &str) -> Self {
-        match self {
-            e @ (Error::Scene(_) | Error::InScene { .. }) => e,
-            e => Error::InScene {
-                file: file.to_string(),
-                source: Box::new(e),
+            Error::Model(e) => match e.category() {
+                Category::Input => 2,
+                _ => 1,
             },
+            Error::Usage { .. }
+            | Error::Write { .. }
+            | Error::Plot { .. }
+            | Error::LawFile { .. } => 2,
+            Error::Strict(_) => 3,
         }
     }
 
@@ -153,6 +120,14 @@ impl Error {
         Error::Usage {
             option: option.into(),
             message: message.into(),
+        }
+    }
+
+    /// The model error inside, if any (without the scene file it is reported in).
+    pub fn model(&self) -> Option<&ModelError> {
+        match self {
+            Error::Model(e) => Some(e.cause()),
+            _ => None,
         }
     }
 }

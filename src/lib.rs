@@ -1,27 +1,20 @@
-//! `stiction`: adhesive contact of elasto-plastic rough surfaces and the in-use stiction
-//! of a MEMS micro-switch (the model of `docs/theory.md`).
+//! `stiction`: the command line of the stiction model (adhesive contact of elasto-plastic
+//! rough surfaces and the in-use stiction of a MEMS micro-switch, `docs/theory.md`).
 //!
-//! This facade re-exports the workspace crates and holds the scenes, the model assembly
-//! and the command-line front end: each command runs scene -> validated model -> run ->
-//! report -> render ([`commands::Command`], [`render::Render`]).
+//! The model is the library `stiction-model` (re-exported as [`model`]): every command
+//! reads a scene, hands it to the library and renders the typed result as a table, JSON,
+//! CSV or SVG ([`render::Render`]). This crate holds only what a command line needs:
+//! options ([`cli`]), rendering and plots, files written safely ([`output`]), progress bars.
 
-pub use asperity_plastic;
-pub use contact_core;
-pub use gw_surface;
-pub use maugis_kim;
-pub use switch_1d;
+pub use stiction_model as model;
+pub use stiction_model::{asperity_plastic, contact_core, gw_surface, maugis_kim, switch_1d};
 
-pub mod accuracy;
 pub mod cli;
 pub mod commands;
 pub mod error;
-pub mod guards;
-pub mod model;
 pub mod output;
 pub mod plot;
 pub mod progress;
 pub mod render;
-pub mod scene;
-pub mod scenegen;
 
 pub use error::Error;

@@ -3,22 +3,42 @@
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
-
-/// A progress counter that may show as a bar.
-pub struct Progress {
-    bar: ProgressBar,
-    start: Instant,
-    shown: bool,
-    terminal: bool,
-}
 
 /// After this long a run shows its bar.
 const DELAY: Duration = Duration::from_secs(2);
 
-impl Progress {
-    /// A counter to `total` steps described by `what`.
-    pub fn new(total: u64, what: &str) -> Self {
+struct State {
+    bar: ProgressBar,
+    start: Instant,
+    shown: bool,
+}
+
+/// A progress bar for the model library's runs ([`stiction_model::Progress`]).
+pub struct Bar {
+    state: Mutex<Option<State>>,
+    terminal: bool,
+}
+
+impl Bar {
+    /// A bar that shows on a terminal only.
+    pub fn new() -> Self {
+        Self {
+            state: Mutex::new(None),
+            terminal: std::io::stderr().is_terminal(),
+        }
+    }
+}
+
+impl Default for Bar {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl stiction_model::Progress for Bar {
+    fn start(&self, total: u64, what: &str) {
         let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
         if let Ok(style) =
             ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} ({elapsed}, eta {eta})")
@@ -26,25 +46,32 @@ impl Progress {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_message(what.to_string());
-        Self {
-            bar,
-            start: Instant::now(),
-            shown: false,
-            terminal: std::io::stderr().is_terminal(),
+        if let Ok(mut s) = self.state.lock() {
+            *s = Some(State {
+                bar,
+                start: Instant::now(),
+                shown: false,
+            });
         }
     }
 
-    /// Sets the position to `done` steps.
-    pub fn set(&mut self, done: u64) {
-        if !self.shown && self.terminal && self.start.elapsed() >= DELAY {
-            self.bar.set_draw_target(ProgressDrawTarget::stderr());
-            self.shown = true;
+    fn set(&self, done: u64) {
+        if let Ok(mut guard) = self.state.lock() {
+            if let Some(s) = guard.as_mut() {
+                if !s.shown && self.terminal && s.start.elapsed() >= DELAY {
+                    s.bar.set_draw_target(ProgressDrawTarget::stderr());
+                    s.shown = true;
+                }
+                s.bar.set_position(done);
+            }
         }
-        self.bar.set_position(done);
     }
 
-    /// Removes the bar.
-    pub fn finish(&self) {
-        self.bar.finish_and_clear();
+    fn finish(&self) {
+        if let Ok(mut guard) = self.state.lock() {
+            if let Some(s) = guard.take() {
+                s.bar.finish_and_clear();
+            }
+        }
     }
 }

@@ -1,10 +1,11 @@
-//! How reports leave the program: formats, numbers with units that fit, warnings, and
-//! standard output that survives a closed pipe (files: [`crate::output`]).
+//! How results leave the program: formats, numbers with units that fit, warnings, the
+//! model's validity, and standard output that survives a closed pipe (files:
+//! [`crate::output`]).
 
 use crate::error::Error;
-pub use crate::output::{write_file, OutputSet};
 use serde::Serialize;
 use std::io::Write;
+pub use stiction_model::guards::{si, Validity, Warning};
 
 /// Output format of a subcommand.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -17,17 +18,7 @@ pub enum Format {
     Table,
 }
 
-/// A physics guard raised by a run: the model is used where it leaves its ground.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Warning {
-    /// Stable identifier (`adhesion_yields_asperity`, `beyond_fit_range`,
-    /// `pressure_above_hardness`, ...).
-    pub code: &'static str,
-    /// What happened and what it means, with numbers.
-    pub message: String,
-}
-
-/// A report that can be rendered in every format.
+/// A result that can be rendered in every format.
 pub trait Render: Serialize {
     /// The table for people.
     fn table(&self) -> String;
@@ -37,9 +28,16 @@ pub trait Render: Serialize {
     fn warnings(&self) -> &[Warning] {
         &[]
     }
-    /// The report in `format`.
-    fn render(&self, format: Format) -> String {
+    /// Whether the model holds for the result (None: the result has no verdict on it).
+    fn validity(&self) -> Option<&Validity> {
+        None
+    }
+    /// The result in `format` (`columns`: JSON curves as column arrays).
+    fn render(&self, format: Format, columns: bool) -> String {
         match format {
+            Format::Json if columns => {
+                json(&columnar(serde_json::to_value(self).unwrap_or_default()))
+            }
             Format::Json => json(self),
             Format::Csv => self.csv(),
             Format::Table => self.table(),
@@ -47,76 +45,59 @@ pub trait Render: Serialize {
     }
 }
 
-/// Pretty JSON with a final newline. Reports hold no NaN or infinity (absent values are
-/// omitted), so serialisation cannot fail.
+/// Pretty JSON with a final newline. Results hold no NaN or infinity (absent values are
+/// omitted, infinite ones named), so serialisation cannot fail.
 pub fn json<T: Serialize + ?Sized>(v: &T) -> String {
-    serde_json::to_string_pretty(v).expect("reports hold finite numbers and string keys") + "\n"
+    serde_json::to_string_pretty(v).expect("results hold finite numbers and string keys") + "\n"
 }
 
-/// A float as JSON: the number when finite, else its name (`"inf"`, `"-inf"`, `"NaN"`),
-/// never `null` (serde `serialize_with`; an infinite yield stress means "never yields").
-pub fn number_or_name<S: serde::Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
-    if v.is_finite() {
-        s.serialize_f64(*v)
-    } else {
-        s.serialize_str(&crate::scene::num(*v))
-    }
-}
-
-/// [`number_or_name`] for an optional float (absent ones are skipped by the field).
-pub fn some_number_or_name<S: serde::Serializer>(v: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
+/// The JSON tree with every array of points (objects with the same keys, each holding
+/// only numbers, booleans or strings) turned into an object of column arrays: what numpy
+/// and pandas read directly.
+pub fn columnar(v: serde_json::Value) -> serde_json::Value {
+    use serde_json::Value as J;
     match v {
-        Some(v) => number_or_name(v, s),
-        None => s.serialize_none(),
+        J::Array(items) => {
+            let rows: Option<Vec<&serde_json::Map<String, J>>> =
+                items.iter().map(|i| i.as_object()).collect();
+            let flat = |o: &&serde_json::Map<String, J>| {
+                o.values().all(|x| !x.is_array() && !x.is_object())
+            };
+            match rows {
+                Some(rows) if !rows.is_empty() && rows.iter().all(flat) => {
+                    let keys: Vec<&String> = rows[0].keys().collect();
+                    if rows
+                        .iter()
+                        .all(|r| r.len() == keys.len() && keys.iter().all(|k| r.contains_key(*k)))
+                    {
+                        let mut out = serde_json::Map::new();
+                        for k in keys {
+                            out.insert(
+                                k.clone(),
+                                J::Array(rows.iter().map(|r| r[k.as_str()].clone()).collect()),
+                            );
+                        }
+                        return J::Object(out);
+                    }
+                    J::Array(items.into_iter().map(columnar).collect())
+                }
+                _ => J::Array(items.into_iter().map(columnar).collect()),
+            }
+        }
+        J::Object(o) => J::Object(o.into_iter().map(|(k, x)| (k, columnar(x))).collect()),
+        other => other,
     }
-}
-
-/// Skips a float that is not finite (serde `skip_serializing_if`).
-pub fn not_finite(v: &f64) -> bool {
-    !v.is_finite()
-}
-
-/// `value` in `unit` with the SI prefix that keeps 1 to 3 digits before the point and
-/// `digits` significant digits (never "0.000000" for a non-zero value).
-pub fn si(value: f64, unit: &str, digits: usize) -> String {
-    if value == 0.0 {
-        return format!("0 {unit}");
-    }
-    if !value.is_finite() {
-        return format!("{value} {unit}");
-    }
-    const PREFIXES: [(f64, &str); 9] = [
-        (1e12, "T"),
-        (1e9, "G"),
-        (1e6, "M"),
-        (1e3, "k"),
-        (1.0, ""),
-        (1e-3, "m"),
-        (1e-6, "u"),
-        (1e-9, "n"),
-        (1e-12, "p"),
-    ];
-    let a = value.abs();
-    if !(1e-12..1e15).contains(&a) {
-        return format!("{value:.*e} {unit}", digits.saturating_sub(1));
-    }
-    let (scale, prefix) = PREFIXES
-        .iter()
-        .copied()
-        .find(|(s, _)| a >= *s)
-        .unwrap_or((1e-12, "p"));
-    let x = value / scale;
-    if x.abs() >= 1e3 || x.abs() < 1e-3 {
-        return format!("{value:.*e} {unit}", digits.saturating_sub(1));
-    }
-    let int_digits = (x.abs().log10().floor() as i64 + 1).max(1) as usize;
-    let decimals = digits.saturating_sub(int_digits);
-    format!("{x:.decimals$} {prefix}{unit}")
 }
 
 /// A pressure in Pa, kPa, MPa or GPa, 4 significant digits.
 pub fn pressure(p: f64) -> String {
     si(p, "Pa", 4)
+}
+
+/// A number in CSV: shortest round-trip digits in scientific notation (every command
+/// writes the same format), empty for an absent value.
+pub fn csv_num(v: f64) -> String {
+    format!("{v:e}")
 }
 
 /// Writes `text` to standard output. A closed pipe (the reader went away, as `| head`
@@ -130,6 +111,13 @@ pub fn emit(text: &str) -> Result<(), Error> {
             path: "standard output".into(),
             source,
         }),
+    }
+}
+
+/// Prints the warnings of a result on standard error.
+pub fn print_warnings(warnings: &[Warning]) {
+    for w in warnings {
+        eprintln!("warning[{}]: {}", w.code, w.message);
     }
 }
 
@@ -150,5 +138,26 @@ mod tests {
         for v in [1e-14, 3e-7, 0.4, 12.0, 7e5, 4e11, 2e16] {
             assert!(!pressure(v).starts_with("0.000"), "{v}: {}", pressure(v));
         }
+    }
+
+    #[test]
+    fn arrays_of_points_become_columns_and_nothing_else_changes() {
+        let v = serde_json::json!({
+            "curve": [{"d": 1.0, "p": 2.0}, {"d": 3.0, "p": 4.0}],
+            "cycles": [{"cycle": 1, "unloading": [{"d": 1.0, "p": 0.5}]}],
+            "names": ["a", "b"],
+            "n": 3
+        });
+        let c = columnar(v);
+        assert_eq!(
+            c["curve"],
+            serde_json::json!({"d": [1.0, 3.0], "p": [2.0, 4.0]})
+        );
+        assert_eq!(
+            c["cycles"][0]["unloading"],
+            serde_json::json!({"d": [1.0], "p": [0.5]})
+        );
+        assert_eq!(c["names"], serde_json::json!(["a", "b"]));
+        assert_eq!(c["n"], 3);
     }
 }

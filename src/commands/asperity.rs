@@ -1,227 +1,79 @@
 //! `stiction asperity`: one elasto-plastic adhesive asperity loaded to each delta_max and
 //! unloaded (the paper's Fig 2 scene).
 
-use super::Command;
-use crate::accuracy::Targets;
+use super::{finish, preflight, Ctx, Outputs, SceneArgs};
 use crate::error::Error;
-use crate::guards;
-use crate::model::{self, Asperity};
 use crate::plot::{self, Panel, Series};
-use crate::render::{self, Format, Render, Warning};
-use crate::scene::{AsperityScene, Loaded};
-use asperity_plastic::PULL_OFF_TOLERANCE;
-use contact_core::numeric::linspace;
-use contact_core::{AsperityHistory, AsperityModel, Path};
-use serde::Serialize;
+use crate::render::{self, csv_num, Format, Render, Validity, Warning};
 use std::fmt::Write as _;
 use std::path::PathBuf;
+use stiction_model::asperity::{self, AsperityResult, ForcePoint};
+use stiction_model::keys::Kind;
+use stiction_model::spec::AsperitySpec;
+
+/// A plot draws at most this many cases (evenly chosen, the first and the last included):
+/// more lines than that are unreadable, and a figure of 1e5 cases would weigh 400 MB.
+pub const MAX_PLOTTED_CASES: usize = 12;
 
 /// One elasto-plastic adhesive asperity loaded and unloaded (paper Fig 2).
 #[derive(Debug, Clone, clap::Args)]
 pub struct AsperityCommand {
-    /// Scene file (TOML); the paper's Fig 2 scene if absent.
-    #[arg(long)]
-    pub scene: Option<PathBuf>,
+    /// Scene, `--set`, `--strict`.
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// Maximum interference (m); repeat for several cases. Replaces the scene's list.
     #[arg(long = "delta-max", allow_hyphen_values = true)]
     pub delta_max: Vec<f64>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Table)]
     pub format: Format,
+    /// JSON curves as column arrays instead of lists of points.
+    #[arg(long)]
+    pub columns: bool,
     /// Write an SVG plot of the curves.
     #[arg(long)]
     pub plot: Option<PathBuf>,
 }
 
-/// A point of a single-asperity curve: interference (m), force (N).
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct ForcePoint {
-    /// Interference (m).
-    pub delta: f64,
-    /// Force (N, compressive > 0).
-    pub force: f64,
-}
-
-/// One loading/unloading case.
-#[derive(Debug, Clone, Serialize)]
-pub struct AsperityCase {
-    /// Maximum interference (m).
-    pub delta_max: f64,
-    /// Residual height loss (m), eq 4.
-    pub delta_res: f64,
-    /// Residual radius (m), eq 5.
-    pub r_res: f64,
-    /// R_eff on loading at delta_max (m), eq 12 with x = 1.
-    pub r_eff_loading: f64,
-    /// Most tensile force on the unloading path (N).
-    pub pull_off_force: f64,
-    /// Where it occurs (m).
-    pub pull_off_interference: f64,
-    /// The same for the elastic asperity (no yield).
-    pub elastic_pull_off_force: f64,
-    /// delta_max beyond the fits' range (delta_max/delta_CP > 110).
-    pub extrapolated: bool,
-    /// Loading curve, from out of contact to delta_max.
-    pub loading: Vec<ForcePoint>,
-    /// Unloading curve, from delta_max to below the jump-out.
-    pub unloading: Vec<ForcePoint>,
-}
-
-/// Error estimates of the reported quantities.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct AsperityErrors {
-    /// Largest change of a pull-off force within its location tolerance (N): each force is
-    /// solved to rounding, the minimum's location to 1e-10 of its bracket.
-    pub pull_off: f64,
-}
-
-/// `stiction asperity`.
-#[derive(Debug, Clone, Serialize)]
-pub struct AsperityReport {
-    /// Plot and table title.
-    pub title: String,
-    /// Yield onset delta_CP (m), eq 1.
-    #[serde(serialize_with = "crate::render::number_or_name")]
-    pub delta_cp: f64,
-    /// Transition parameter at the initial radius.
-    pub lambda: f64,
-    /// Initial radius (m).
-    pub radius: f64,
-    /// Accuracy mode and targets (an asperity solves every point to rounding in every mode).
-    pub accuracy: Targets,
-    /// Error estimates.
-    pub error_estimate: AsperityErrors,
-    /// The cases.
-    pub cases: Vec<AsperityCase>,
-    /// Guards raised.
-    pub warnings: Vec<Warning>,
-    /// The resolved scene.
-    pub scene: AsperityScene,
-}
-
-fn pull_off_error(m: &Asperity, delta_max: f64, at: f64, force: f64) -> Result<f64, Error> {
-    let hist = AsperityHistory { delta_max };
-    let path = Path::Retract { from: delta_max };
-    let j = m.jumps(hist)?;
-    let h = PULL_OFF_TOLERANCE.rel * (delta_max - j.jump_out);
-    let mut worst: f64 = 0.0;
-    for x in [at - h, at + h] {
-        if x > j.jump_out && x <= delta_max {
-            worst = worst.max((m.force(x, hist, path)? - force).abs());
-        }
-    }
-    Ok(worst)
-}
-
-impl Command for AsperityCommand {
-    type Scene = AsperityScene;
-    type Report = AsperityReport;
-
-    fn scene_path(&self) -> Option<&std::path::Path> {
-        self.scene.as_deref()
-    }
-
-    fn apply(&self, scene: &mut AsperityScene) -> Result<(), Error> {
+impl AsperityCommand {
+    /// Runs the command.
+    pub fn execute(&self, ctx: Ctx) -> Result<String, Error> {
+        let mut edits = Vec::new();
         if !self.delta_max.is_empty() {
-            scene.delta_max = self.delta_max.clone();
+            let list = self
+                .delta_max
+                .iter()
+                .map(|&d| toml::Value::Float(d))
+                .collect();
+            edits.push(("delta_max", toml::Value::Array(list), "--delta-max"));
         }
-        Ok(())
-    }
-
-    fn overrides(&self) -> Vec<(&'static str, &'static str)> {
-        if self.delta_max.is_empty() {
-            vec![]
-        } else {
-            vec![("delta_max", "--delta-max")]
-        }
-    }
-
-    fn run(&self, loaded: &Loaded<AsperityScene>) -> Result<AsperityReport, Error> {
-        let scene = &loaded.scene;
-        let c = &scene.contact;
-        let plastic = model::asperity(c, false)?;
-        let elastic = model::asperity(c, true)?;
-        let pair = model::pair(c)?;
-        let lambda = maugis_kim::Scales::lambda(pair.k(), c.work_of_adhesion, c.z0, c.radius);
-        let n = scene.points;
-        let mut cases = Vec::new();
-        let mut error: f64 = 0.0;
-        for &dmax in &scene.delta_max {
-            let virgin = AsperityHistory::VIRGIN;
-            let j0 = plastic.jumps(virgin)?;
-            let start = j0.jump_in - 0.02 * (dmax - j0.jump_in);
-            let loading = linspace(start, dmax, n)
-                .map(|delta| {
-                    Ok(ForcePoint {
-                        delta,
-                        force: plastic.force(delta, virgin, Path::Approach)?,
-                    })
-                })
-                .collect::<Result<Vec<_>, Error>>()?;
-            let hist = AsperityHistory { delta_max: dmax };
-            let j = plastic.jumps(hist)?;
-            let end = j.jump_out - 0.02 * (dmax - j.jump_out);
-            let unloading = linspace(dmax, end, n)
-                .map(|delta| {
-                    Ok(ForcePoint {
-                        delta,
-                        force: plastic.force(delta, hist, Path::Retract { from: dmax })?,
-                    })
-                })
-                .collect::<Result<Vec<_>, Error>>()?;
-            let pull = plastic.pull_off(dmax)?;
-            let epull = elastic.pull_off(dmax)?;
-            error = error
-                .max(pull_off_error(&plastic, dmax, pull.delta, pull.force)?)
-                .max(pull_off_error(&elastic, dmax, epull.delta, epull.force)?);
-            let st = plastic.plastic_state(hist);
-            cases.push(AsperityCase {
-                delta_max: dmax,
-                delta_res: st.delta_res,
-                r_res: st.r_res,
-                r_eff_loading: plastic.effective(dmax, dmax).radius,
-                pull_off_force: pull.force,
-                pull_off_interference: pull.delta,
-                elastic_pull_off_force: epull.force,
-                extrapolated: st.extrapolated,
-                loading,
-                unloading,
-            });
-        }
-        let dcp = plastic.delta_cp();
-        let mut warnings: Vec<Warning> = guards::adhesion_yields(c, &plastic, &elastic)?
-            .into_iter()
-            .collect();
-        warnings.extend(guards::asperity_beyond_fit(dcp, &scene.delta_max));
-        Ok(AsperityReport {
-            title: loaded.title(),
-            delta_cp: dcp,
-            lambda,
-            radius: c.radius,
-            accuracy: scene.accuracy.targets(),
-            error_estimate: AsperityErrors { pull_off: error },
-            cases,
-            warnings,
-            scene: scene.clone(),
-        })
-    }
-
-    fn outputs(&self, report: &AsperityReport) -> Result<Option<crate::render::OutputSet>, Error> {
+        let loaded = self.scene.load(Kind::Asperity, &edits)?;
+        let spec = AsperitySpec::new(&loaded.scene, ctx.registry).map_err(|e| loaded.blame(e))?;
+        preflight(None, &[], self.plot.as_deref())?;
+        let result = asperity::run(&spec)?;
+        let mut outputs = Outputs::default();
         if let Some(p) = &self.plot {
-            super::write_plot(p, plot_svg(report))?;
+            outputs.plots.push((p.clone(), plot_svg(&result)));
         }
-        Ok(None)
-    }
-
-    fn format(&self) -> Format {
-        self.format
+        finish(
+            &result,
+            self.format,
+            self.columns,
+            self.scene.strict,
+            outputs,
+        )
     }
 }
 
 /// The curves as the paper's Fig 2 draws them (uN against nm).
-pub fn plot_svg(r: &AsperityReport) -> Result<String, String> {
+pub fn plot_svg(r: &AsperityResult) -> Result<String, String> {
     let mut series = Vec::new();
-    for c in &r.cases {
+    let n = r.cases.len();
+    let stride = n.div_ceil(MAX_PLOTTED_CASES).max(1);
+    for (i, c) in r.cases.iter().enumerate() {
+        if i % stride != 0 && i + 1 != n {
+            continue;
+        }
         let tag = format!("{:.0} nm", c.delta_max * 1e9);
         let pts = |v: &[ForcePoint]| v.iter().map(|p| (p.delta * 1e9, p.force * 1e6)).collect();
         series.push(Series {
@@ -237,9 +89,16 @@ pub fn plot_svg(r: &AsperityReport) -> Result<String, String> {
         &r.title,
         &[Panel {
             caption: format!(
-                "eq 1 {}, delta_CP = {}",
-                r.scene.contact.yield_modulus().as_str(),
-                render::si(r.delta_cp, "m", 4)
+                "{} plasticity, eq 1 {}, reload {}, delta_CP = {}{}",
+                r.laws.plasticity,
+                r.laws.yield_modulus,
+                r.laws.reload,
+                render::si(r.delta_cp, "m", 4),
+                if stride > 1 {
+                    format!(" ({} of {n} cases drawn)", n.div_ceil(stride))
+                } else {
+                    String::new()
+                }
             ),
             x_label: "interference delta [nm]".into(),
             y_label: "force [uN]".into(),
@@ -250,17 +109,14 @@ pub fn plot_svg(r: &AsperityReport) -> Result<String, String> {
     )
 }
 
-impl Render for AsperityReport {
+impl Render for AsperityResult {
     fn table(&self) -> String {
         let mut s = String::new();
-        let c = &self.scene.contact;
         let _ = writeln!(s, "{}", self.title);
         let _ = writeln!(
             s,
-            "laws: {} adhesion, {} plasticity, eq 1 {}; accuracy {} (points solved to rounding)",
-            model::adhesion_name(c.adhesion_law),
-            model::plasticity_name(c.plasticity_law),
-            c.yield_modulus().as_str(),
+            "{}; accuracy {} (points solved to rounding)",
+            super::switch::laws_line(&self.laws),
             self.accuracy.mode
         );
         let _ = writeln!(
@@ -275,6 +131,9 @@ impl Render for AsperityReport {
             "{:>12} {:>10} {:>12} {:>12} {:>14} {:>14} {:>6}",
             "delta_max", "dmax/dCP", "delta_res", "R_res", "pull-off", "elastic", "extrap"
         );
+        if !self.validity.holds {
+            let _ = writeln!(s, "{}", self.validity.words());
+        }
         for k in &self.cases {
             let _ = writeln!(
                 s,
@@ -296,7 +155,14 @@ impl Render for AsperityReport {
         for c in &self.cases {
             for (name, pts) in [("loading", &c.loading), ("unloading", &c.unloading)] {
                 for p in pts {
-                    let _ = writeln!(s, "{},{},{},{}", c.delta_max, name, p.delta, p.force);
+                    let _ = writeln!(
+                        s,
+                        "{},{},{},{}",
+                        csv_num(c.delta_max),
+                        name,
+                        csv_num(p.delta),
+                        csv_num(p.force)
+                    );
                 }
             }
         }
@@ -305,5 +171,9 @@ impl Render for AsperityReport {
 
     fn warnings(&self) -> &[Warning] {
         &self.warnings
+    }
+
+    fn validity(&self) -> Option<&Validity> {
+        Some(&self.validity)
     }
 }

@@ -1,11 +1,12 @@
 //! `stiction md`: the nondimensional Maugis-Kim curve (paper eqs 7-11, Kim extension).
 
+use super::argument_error;
 use crate::error::Error;
 use crate::render::{Format, Render};
-use contact_core::Path;
-use maugis_kim::{MdCurve, MdPoint};
-use serde::Serialize;
 use std::fmt::Write as _;
+use stiction_model::contact_core::Path;
+use stiction_model::maugis_kim;
+use stiction_model::md::{self, MdPointResult, MdResult};
 
 /// A path option of `md --delta`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -24,7 +25,7 @@ pub struct MdCommand {
     pub lambda: f64,
     /// Points on the curve.
     #[arg(long, default_value_t = 200, allow_hyphen_values = true)]
-    pub points: usize,
+    pub points: i64,
     /// Largest interference Delta of the curve.
     #[arg(long, default_value_t = 5.0, allow_hyphen_values = true)]
     pub delta_end: f64,
@@ -40,16 +41,24 @@ pub struct MdCommand {
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Json)]
     pub format: Format,
+    /// JSON curves as column arrays instead of lists of points.
+    #[arg(long)]
+    pub columns: bool,
 }
 
 impl MdCommand {
     /// The curve, or one point with --delta.
     pub fn execute(&self) -> Result<String, Error> {
         let Some(delta) = self.delta else {
-            return Ok(super::show(
-                &curve(self.lambda, self.points, self.delta_end)?,
-                self.format,
-            ));
+            if self.points < 0 {
+                return Err(Error::usage(
+                    "--points",
+                    format!("{}: must be in [4, 100000]", self.points),
+                ));
+            }
+            let r = md::curve(self.lambda, self.points as usize, self.delta_end)
+                .map_err(argument_error)?;
+            return Ok(r.render(self.format, self.columns));
         };
         let p = match (self.path, self.from) {
             (PathArg::Approach, None) => Path::Approach,
@@ -59,127 +68,12 @@ impl MdCommand {
             (PathArg::Retract, Some(f)) => Path::Retract { from: f },
             (PathArg::Retract, None) => return Err(Error::usage("--path retract", "needs --from")),
         };
-        Ok(super::show(&point(self.lambda, delta, p)?, self.format))
+        let r = md::point(self.lambda, delta, p).map_err(argument_error)?;
+        Ok(r.render(self.format, self.columns))
     }
 }
 
-/// The curve and its landmarks.
-#[derive(Debug, Clone, Serialize)]
-pub struct MdReport {
-    /// Transition parameter lambda.
-    pub lambda: f64,
-    /// Jump-in interference on approach, Delta_in = -2/(pi lambda).
-    pub jump_in_delta: f64,
-    /// Turning point (jump-out) interference Delta_t.
-    pub turning_delta: f64,
-    /// Force at the turning point.
-    pub turning_force: f64,
-    /// Minimum force on the stable branch (DMT -2, JKR -3/2).
-    pub pull_off_load_control: f64,
-    /// Force at jump-out (JKR -5/6).
-    pub pull_off_displacement_control: f64,
-    /// The whole curve (contact-branch points carry `s`; non-contact points omit it).
-    pub curve: Vec<MdPoint>,
-}
-
-/// One point on a path.
-#[derive(Debug, Clone, Serialize)]
-pub struct MdPointReport {
-    /// Transition parameter.
-    pub lambda: f64,
-    /// Interference Delta.
-    pub delta: f64,
-    /// `approach` or `retract`.
-    pub path: &'static str,
-    /// Largest interference of the excursion (retract).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub from: Option<f64>,
-    /// Force Fbar.
-    pub force: f64,
-}
-
-fn curve_for(lambda: f64) -> Result<MdCurve, Error> {
-    if !(lambda.is_finite() && (1e-6..=1e6).contains(&lambda)) {
-        return Err(Error::usage(
-            "--lambda",
-            format!(
-                "{}: must be finite and in [1e-6, 1e6]",
-                crate::scene::num(lambda)
-            ),
-        ));
-    }
-    Ok(MdCurve::new(lambda)?)
-}
-
-/// The curve of `lambda` with `points` points up to `delta_end`.
-pub fn curve(lambda: f64, points: usize, delta_end: f64) -> Result<MdReport, Error> {
-    let c = curve_for(lambda)?;
-    if !(4..=100_000).contains(&points) {
-        return Err(Error::usage(
-            "--points",
-            format!("{points}: must be in [4, 100000]"),
-        ));
-    }
-    let dj = c.junction().delta;
-    if !(delta_end.is_finite() && delta_end > dj && delta_end <= 1e6) {
-        return Err(Error::usage(
-            "--delta-end",
-            format!(
-                "{}: must be finite, above the junction Delta_j = {} and at most 1e6",
-                crate::scene::num(delta_end),
-                crate::scene::num(dj)
-            ),
-        ));
-    }
-    let t = c.pull_off_displacement_control()?;
-    Ok(MdReport {
-        lambda,
-        jump_in_delta: c.jump_in_delta(),
-        turning_delta: t.delta,
-        turning_force: t.force,
-        pull_off_load_control: c.pull_off_load_control()?.force,
-        pull_off_displacement_control: t.force,
-        curve: c.curve(points, delta_end)?,
-    })
-}
-
-/// The force at `delta` on `path`.
-pub fn point(lambda: f64, delta: f64, path: Path) -> Result<MdPointReport, Error> {
-    let c = curve_for(lambda)?;
-    if !(delta.is_finite() && delta.abs() <= 1e6) {
-        return Err(Error::usage(
-            "--delta",
-            format!(
-                "{}: must be finite, |Delta| <= 1e6",
-                crate::scene::num(delta)
-            ),
-        ));
-    }
-    let (name, from) = match path {
-        Path::Approach => ("approach", None),
-        Path::Retract { from } => {
-            if !(from.is_finite() && from.abs() <= 1e6) {
-                return Err(Error::usage(
-                    "--from",
-                    format!(
-                        "{}: must be finite, |Delta| <= 1e6",
-                        crate::scene::num(from)
-                    ),
-                ));
-            }
-            ("retract", Some(from))
-        }
-    };
-    Ok(MdPointReport {
-        lambda,
-        delta,
-        path: name,
-        from,
-        force: c.force(delta, path)?,
-    })
-}
-
-impl Render for MdReport {
+impl Render for MdResult {
     fn table(&self) -> String {
         let mut s = String::new();
         let _ = writeln!(
@@ -234,7 +128,7 @@ impl Render for MdReport {
     }
 }
 
-impl Render for MdPointReport {
+impl Render for MdPointResult {
     fn table(&self) -> String {
         format!(
             "lambda = {}, Delta = {}, path = {}: Fbar = {}\n",

@@ -1,6 +1,6 @@
-//! The subcommands. Each is scene -> validated model -> run -> report -> render: the
-//! [`Command`] trait says where the scene comes from, what the command line overrides and
-//! what is computed; [`pipeline`] does the rest, the same way for every command.
+//! The subcommands: each is a clap struct that reads a scene, hands it to the model library
+//! (`stiction-model`: scene -> spec -> model -> run -> result) and renders the result. No
+//! physics here: what a command computes is the library's.
 
 pub mod asperity;
 pub mod calibrate;
@@ -12,94 +12,164 @@ pub mod surface;
 pub mod switch;
 
 use crate::error::Error;
-use crate::render::{self, Format, OutputSet, Render};
-use crate::scene::{self, Loaded, Scene};
-use std::path::Path;
+use crate::output::{self, OutputSet};
+use crate::render::{self, Format, Render};
+use std::path::{Path, PathBuf};
+use stiction_model::keys::Kind;
+use stiction_model::laws::LawRegistry;
+use stiction_model::scene::Scene;
+use stiction_model::{ModelError, SceneError};
 
-/// A subcommand that works on a scene.
-pub trait Command {
-    /// Its scene kind.
-    type Scene: Scene;
-    /// Its report.
-    type Report: Render;
-    /// The scene file (None: the embedded paper scene).
-    fn scene_path(&self) -> Option<&Path>;
-    /// Command-line overrides, applied before validation.
-    fn apply(&self, scene: &mut Self::Scene) -> Result<(), Error> {
-        let _ = scene;
-        Ok(())
-    }
-    /// The scene keys this invocation's options replaced, with the option that set each
-    /// (`("cycles", "--cycles")`): a value out of its domain is then reported against the
-    /// option the user typed, not against the scene file.
-    fn overrides(&self) -> Vec<(&'static str, &'static str)> {
-        Vec::new()
-    }
-    /// The computation.
-    fn run(&self, scene: &Loaded<Self::Scene>) -> Result<Self::Report, Error>;
-    /// Files to write besides standard output (an `--out` folder, a `--plot`).
-    fn outputs(&self, report: &Self::Report) -> Result<Option<OutputSet>, Error> {
-        let _ = report;
-        Ok(None)
-    }
-    /// The format of standard output.
-    fn format(&self) -> Format;
+/// What every command runs with: the laws scenes may name.
+#[derive(Debug, Clone, Copy)]
+pub struct Ctx<'a> {
+    /// The law registry (the built-in laws, and a user's own in a binary of theirs).
+    pub registry: &'a LawRegistry,
 }
 
-/// Runs a command: load, override, validate, run, warn, write files, render.
-pub fn pipeline<C: Command>(cmd: &C) -> Result<String, Error> {
-    let mut loaded = scene::load::<C::Scene>(cmd.scene_path())?;
-    cmd.apply(&mut loaded.scene)?;
-    loaded
-        .scene
-        .validate(&loaded.file)
-        .map_err(|e| blame_option(e, &cmd.overrides()))?;
-    let report = cmd.run(&loaded).map_err(|e| e.in_scene(&loaded.file))?;
-    for w in report.warnings() {
-        eprintln!("warning[{}]: {}", w.code, w.message);
+/// The options of every command that reads a scene.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct SceneArgs {
+    /// Scene file (TOML, or JSON if it ends in .json or starts with `{`); the paper's scene
+    /// if absent.
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
+    /// Set a scene key before validation, KEY=VALUE with KEY as `section.key` and VALUE a
+    /// TOML value or a bare word (repeatable): --set contact.reload=bounded --set cycles=20.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Exit with status 3 when the model does not hold for the result (the verdict's
+    /// "outside the model's validity"); the result is written all the same.
+    #[arg(long)]
+    pub strict: bool,
+}
+
+/// A scene loaded for a command, with the command line's edits and who made each.
+pub struct Loaded {
+    /// The scene, edited.
+    pub scene: Scene,
+    /// (scene key, option that set it), to blame an option for a value out of its domain.
+    pub blame: Vec<(String, String)>,
+}
+
+impl SceneArgs {
+    /// Reads the scene (or the paper's of `kind`) and applies `--set`, then `edits` (a
+    /// command's own options: key, value, option).
+    pub fn load(&self, kind: Kind, edits: &[(&str, toml::Value, &str)]) -> Result<Loaded, Error> {
+        let mut scene = Scene::read_or_paper(self.scene.as_deref(), kind)?;
+        let mut blame = Vec::new();
+        for s in &self.set {
+            let Some((key, value)) = s.split_once('=') else {
+                return Err(Error::usage(
+                    "--set",
+                    format!("`{s}`: expected KEY=VALUE, e.g. contact.reload=bounded"),
+                ));
+            };
+            let key = key.trim();
+            scene
+                .set_text(key, value.trim())
+                .map_err(|e| Error::usage("--set", e.without_file()))?;
+            blame.push((key.to_string(), format!("--set {key}")));
+        }
+        for (key, value, option) in edits {
+            scene.set(key, value.clone())?;
+            blame.push((key.to_string(), option.to_string()));
+        }
+        Ok(Loaded { scene, blame })
     }
-    let mut text = report.render(cmd.format());
-    if let Some(set) = cmd.outputs(&report)? {
-        let written = set.commit()?;
-        if cmd.format() == Format::Table {
-            let list: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
-            text.push_str(&format!("\nwrote {}\n", list.join(", ")));
+}
+
+impl Loaded {
+    /// A model error on a key an option set, as an error of that option; a library
+    /// argument as the option of its name; others as they are.
+    pub fn blame(&self, e: ModelError) -> Error {
+        if let ModelError::Scene(s) = &e {
+            if let Some(key) = s.key() {
+                // `delta_max[0]` was set by `--delta-max` as much as `delta_max` itself
+                let base = key.split('[').next().unwrap_or(key);
+                if let Some((_, option)) = self.blame.iter().rev().find(|(k, _)| k == base) {
+                    let message = match s {
+                        SceneError::Field { value, allowed, .. } => {
+                            format!("{value}: must be {allowed}")
+                        }
+                        other => other.without_file(),
+                    };
+                    return Error::usage(option, message);
+                }
+            }
+        }
+        argument_error(e)
+    }
+}
+
+/// The option a library argument came from, for messages (`vary` -> `--vary`).
+pub fn argument_error(e: ModelError) -> Error {
+    match e {
+        ModelError::Argument {
+            name,
+            value,
+            allowed,
+        } => Error::usage(
+            &format!("--{}", name.replace('_', "-")),
+            format!("{value}: must be {allowed}"),
+        ),
+        e => e.into(),
+    }
+}
+
+/// What a command writes besides standard output.
+#[derive(Default)]
+pub struct Outputs {
+    /// An `--out` folder.
+    pub folder: Option<OutputSet>,
+    /// `--plot` files: the path and the SVG (or why it could not be drawn).
+    pub plots: Vec<(PathBuf, Result<String, String>)>,
+}
+
+/// Checks, before any computation, that the outputs can be written: an `--out` folder
+/// holding only `known` files (or absent), a `--plot` path that takes a file.
+pub fn preflight(out: Option<&Path>, known: &[&str], plot: Option<&Path>) -> Result<(), Error> {
+    if let Some(dir) = out {
+        OutputSet::check(dir, known)?;
+    }
+    if let Some(p) = plot {
+        output::check_file(p)?;
+    }
+    Ok(())
+}
+
+/// Prints the warnings, writes the outputs, renders the result in `format` and applies
+/// `--strict`.
+pub fn finish<R: Render>(
+    result: &R,
+    format: Format,
+    columns: bool,
+    strict: bool,
+    outputs: Outputs,
+) -> Result<String, Error> {
+    render::print_warnings(result.warnings());
+    let mut written = Vec::new();
+    for (path, svg) in outputs.plots {
+        let svg = svg.map_err(|message| Error::Plot {
+            path: path.display().to_string(),
+            message,
+        })?;
+        output::write_file(&path, svg.as_bytes())?;
+        written.push(path);
+    }
+    if let Some(set) = outputs.folder {
+        written.extend(set.commit()?);
+    }
+    let mut text = result.render(format, columns);
+    if format == Format::Table && !written.is_empty() {
+        let list: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+        text.push_str(&format!("\nwrote {}\n", list.join(", ")));
+    }
+    if strict {
+        if let Some(v) = result.validity().filter(|v| !v.holds) {
+            render::emit(&text)?;
+            return Err(Error::Strict(v.words()));
         }
     }
     Ok(text)
-}
-
-/// A scene error on a key an option replaced, as an error of that option.
-fn blame_option(e: scene::SceneError, overrides: &[(&str, &str)]) -> Error {
-    if let scene::SceneError::Field {
-        key,
-        value,
-        allowed,
-        ..
-    } = &e
-    {
-        // `delta_max[0]` was set by `--delta-max` as much as `delta_max` itself
-        let base = key.split('[').next().unwrap_or(key);
-        if let Some((_, option)) = overrides.iter().find(|(k, _)| *k == base) {
-            return Error::usage(option, format!("{value}: must be {allowed}"));
-        }
-    }
-    e.into()
-}
-
-/// Renders a report computed without a scene.
-pub fn show<R: Render>(report: &R, format: Format) -> String {
-    for w in report.warnings() {
-        eprintln!("warning[{}]: {}", w.code, w.message);
-    }
-    report.render(format)
-}
-
-/// An SVG plot for a `--plot` option, written atomically.
-pub fn write_plot(path: &Path, svg: Result<String, String>) -> Result<(), Error> {
-    let svg = svg.map_err(|message| Error::Plot {
-        path: path.display().to_string(),
-        message,
-    })?;
-    render::write_file(path, svg.as_bytes())
 }

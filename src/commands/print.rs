@@ -1,7 +1,8 @@
 //! `stiction scene --print KIND`: an embedded scene with every accepted key, alternatives
 //! commented out with their meaning, to start a scene of one's own from.
 
-use crate::scene::{self, fields::Kind};
+use stiction_model::keys::Kind;
+use stiction_model::scene;
 
 /// The scene kinds of `scene --print`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -37,16 +38,16 @@ impl SceneCommand {
 /// The annotated paper scene of `kind`.
 pub fn scene_text(kind: Kind) -> &'static str {
     match kind {
-        Kind::Asperity => scene::DEFAULT_ASPERITY,
-        Kind::Surface => scene::DEFAULT_SURFACE,
-        Kind::Switch => scene::DEFAULT_SWITCH,
+        Kind::Asperity => scene::PAPER_ASPERITY,
+        Kind::Surface => scene::PAPER_SURFACE,
+        _ => scene::PAPER_SWITCH,
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::fields;
+    use stiction_model::keys as fields;
 
     /// Every key a scene accepts appears in its printed form, set or commented out.
     #[test]

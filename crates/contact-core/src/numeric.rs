@@ -158,6 +158,64 @@ pub fn brent_from<E: From<CoreError>>(
     }
 }
 
+/// Steps away from a known sample `start` through `first`, each step `grow` times as far
+/// from `start` as the one before (the last step clamped to `limit`), until f changes side
+/// (f < 0 against f >= 0, as [`zeroin`] reads sides). Returns the bracket (the last sample on
+/// `start`'s side, the first on the other), or None when f keeps its side up to `limit`.
+/// The one bracket expansion of the workspace: a search outward from a known point.
+///
+/// ```
+/// use contact_core::numeric::{expand_bracket, Sample};
+/// use contact_core::CoreError;
+/// let f = |x: f64| Ok::<_, CoreError>(x - 37.0);
+/// let (lo, hi) = expand_bracket("x - 37", f, Sample { x: 0.0, f: -37.0 }, 1.0, 2.0, 1e3)?.unwrap();
+/// assert_eq!((lo.x, hi.x), (32.0, 64.0));
+/// assert!(expand_bracket("x - 37", f, Sample { x: 0.0, f: -37.0 }, 1.0, 2.0, 10.0)?.is_none());
+/// # Ok::<(), CoreError>(())
+/// ```
+pub fn expand_bracket<E: From<CoreError>>(
+    what: &'static str,
+    mut f: impl FnMut(f64) -> Result<f64, E>,
+    start: Sample,
+    first: f64,
+    grow: f64,
+    limit: f64,
+) -> Result<Option<(Sample, Sample)>, E> {
+    let side = start.f < 0.0;
+    let span = limit - start.x;
+    let mut step = first - start.x;
+    if !(grow > 1.0 && step != 0.0 && (step > 0.0) == (span > 0.0)) {
+        return Err(CoreError::Invalid {
+            field: "bracket expansion",
+            value: step,
+            allowed: "a first step towards the limit and a growth factor above 1",
+        }
+        .into());
+    }
+    let mut prev = start;
+    for _ in 0..4096 {
+        let at_limit = step.abs() >= span.abs();
+        let x = if at_limit { limit } else { start.x + step };
+        let s = Sample {
+            x,
+            f: finite::<E>(what, x, f(x)?)?,
+        };
+        if (s.f < 0.0) != side {
+            return Ok(Some((prev, s)));
+        }
+        if at_limit {
+            return Ok(None);
+        }
+        prev = s;
+        step *= grow;
+    }
+    Err(CoreError::NoConvergence {
+        what,
+        iterations: 4096,
+    }
+    .into())
+}
+
 /// Where [`zeroin`] ended: `best` the end with the smaller |f| (the root's estimate), `other`
 /// the far end of the bracket, and the evaluations spent.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -42,20 +42,17 @@ impl ImpactFilm {
 pub struct Precision {
     /// d_e to this fraction of the surface's roughness length scale.
     pub d_e: f64,
-    /// The pull-out pressure to this fraction of itself ...
+    /// The pull-out pressure to this fraction of itself (an absolute floor, a pressure
+    /// error that does not matter to the caller, belongs to the surface's quadrature).
     pub pull_out: f64,
-    /// ... or to this absolute floor (Pa), whichever is larger; also the pressure below
-    /// which energy errors do not matter.
-    pub pressure_floor: f64,
 }
 
 impl Default for Precision {
-    /// d_e to 1e-10 sigma, pull-out to 1e-9, no floor.
+    /// d_e to 1e-10 sigma, pull-out to 1e-9.
     fn default() -> Self {
         Self {
             d_e: 1e-10,
             pull_out: 1e-9,
-            pressure_floor: 0.0,
         }
     }
 }
@@ -408,6 +405,10 @@ pub struct Unloading {
     pub pull_out_separation: f64,
     /// The curve from d_e to the surface's reach (empty when not asked for).
     pub curve: Vec<PressurePoint>,
+    /// The adhesive well sampled on its own: half as many points as the curve, evenly
+    /// from d_e to 2.5 times the pull-out's distance from d_e (empty when no curve is asked
+    /// for or nothing pulls), for a plot that shows the well and its minimum.
+    pub well: Vec<PressurePoint>,
 }
 
 /// Samples per decade of the geometric part of the pull-out search grid.
@@ -468,18 +469,32 @@ pub fn unload<S: SurfaceLaw>(
     } else {
         (0.0, reach, 0.0)
     };
-    let ds: Vec<f64> = linspace(d_e, reach, if points == 0 { 0 } else { points.max(2) }).collect();
-    let curve = par::map(&ds, |&d| {
-        Ok::<_, SwitchError>(PressurePoint {
-            d,
-            pressure: surface.pressure(d, history, path)?,
+    let sample = |ds: &[f64]| {
+        par::map(ds, |&d| {
+            Ok::<_, SwitchError>(PressurePoint {
+                d,
+                pressure: surface.pressure(d, history, path)?,
+            })
         })
-    })?;
+    };
+    let ds: Vec<f64> = linspace(d_e, reach, if points == 0 { 0 } else { points.max(2) }).collect();
+    let curve = sample(&ds)?;
+    let well = if points > 0 && pull > 0.0 {
+        let end = (d_e + 2.5 * (at - d_e)).min(reach);
+        let mut ds: Vec<f64> = linspace(d_e, end, (points / 2).max(2)).collect();
+        ds.push(at);
+        ds.sort_by(f64::total_cmp);
+        ds.dedup();
+        sample(&ds)?
+    } else {
+        Vec::new()
+    };
     Ok(Unloading {
         pull_out_pressure: pull,
         pull_out_error: error,
         pull_out_separation: at,
         curve,
+        well,
     })
 }
 
@@ -570,6 +585,37 @@ pub struct Cycle<H> {
     pub pull_out_ratio: f64,
     /// The spring cannot open the switch after this cycle: ratio > 1.
     pub sticks: bool,
+    /// This impact went deeper than every earlier one (d_e below the deepest separation
+    /// reached before; always true for the first cycle). An impact that does not deepen
+    /// leaves the history unchanged, so every later cycle repeats it.
+    pub deepened: bool,
+    /// How far d_e stops above the deepest separation of the earlier cycles (m, >= 0; 0
+    /// when it deepened).
+    pub shallower_by: f64,
+}
+
+/// Why a run counts as accommodated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[non_exhaustive]
+pub enum AccommodationCause {
+    /// The impacts still deepen, by less than the tolerance: the history saturates.
+    Saturated,
+    /// The impact did not go deeper than an earlier one, so the history stopped changing
+    /// and every later cycle repeats: accommodation by a non-deepening impact (with eq 12
+    /// as printed, the reload overshoot can cause it; theory 6.3).
+    NonDeepening,
+}
+
+impl AccommodationCause {
+    /// The name outputs use: `saturated` or `non_deepening`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            AccommodationCause::Saturated => "saturated",
+            AccommodationCause::NonDeepening => "non_deepening",
+        }
+    }
 }
 
 impl<H> Cycle<H> {
@@ -589,6 +635,14 @@ pub struct CycleRun<H> {
     pub cycles: Vec<Cycle<H>>,
     /// The cycle after which nothing changes any more (within the tolerance).
     pub accommodated_after: Option<usize>,
+    /// Why: the history saturating, or an impact that did not deepen.
+    pub accommodation_cause: Option<AccommodationCause>,
+    /// When the run stopped at accommodation (`until_accommodated`): an estimate of how
+    /// much the largest pull-out could still grow in the cycles not run (Pa): the last
+    /// change accepted by the tolerance, extended as a geometric series of the last two
+    /// changes (ratio capped at 0.9); 0 when the history stopped changing (every later
+    /// cycle repeats) or when the run was not stopped early.
+    pub stopping_error: f64,
     /// The largest pull-out pressure of all cycles (Pa, per contact area).
     pub largest_pull_out: f64,
     /// The largest phi pull-out / (K_s d0).
@@ -624,6 +678,7 @@ pub fn run_cycles<S: SurfaceLaw>(
     let mut hist = history;
     let mut cycles: Vec<Cycle<S::History>> = Vec::new();
     let mut accommodated_after = None;
+    let mut accommodation_cause = None;
     let mut loading = Vec::new();
     // the history the last cycle started from: a cycle starting from the same one repeats it
     let mut last_start: Option<S::History> = None;
@@ -665,6 +720,9 @@ pub fn run_cycles<S: SurfaceLaw>(
                 })
             })?;
         }
+        let deepest_before = cycles.iter().map(|c| c.end.d_e).reduce(f64::min);
+        let deepened = deepest_before.is_none_or(|d| end.d_e < d);
+        let shallower_by = deepest_before.map_or(0.0, |d| (end.d_e - d).max(0.0));
         if let Some(prev) = cycles.last() {
             let dp = (unloading.pull_out_pressure - prev.unloading.pull_out_pressure).abs();
             let dd = (end.d_e - prev.end.d_e).abs();
@@ -673,6 +731,11 @@ pub fn run_cycles<S: SurfaceLaw>(
                 && dd <= tol * scale
             {
                 accommodated_after = Some(prev.cycle);
+                accommodation_cause = Some(if deepened {
+                    AccommodationCause::Saturated
+                } else {
+                    AccommodationCause::NonDeepening
+                });
             }
         }
         let ratio = impact.pull_out_ratio(unloading.pull_out_pressure);
@@ -684,6 +747,8 @@ pub fn run_cycles<S: SurfaceLaw>(
             unloading,
             pull_out_ratio: ratio,
             sticks: ratio > 1.0,
+            deepened,
+            shallower_by,
         };
         on_cycle(&cycle);
         cycles.push(cycle);
@@ -696,8 +761,18 @@ pub fn run_cycles<S: SurfaceLaw>(
         .map(|c| c.unloading.pull_out_pressure)
         .fold(0.0, f64::max);
     let first_sticking_cycle = cycles.iter().find(|c| c.sticks).map(|c| c.cycle);
+    let stopped_early =
+        options.until_accommodated && accommodated_after.is_some() && cycles.len() < options.cycles;
+    let stopping_error =
+        if stopped_early && accommodation_cause == Some(AccommodationCause::Saturated) {
+            stopping_error(&cycles)
+        } else {
+            0.0
+        };
     Ok(CycleRun {
         loading,
+        accommodation_cause,
+        stopping_error,
         pull_out_ratio: impact.pull_out_ratio(largest_pull_out),
         largest_pull_out,
         stiction: first_sticking_cycle.is_some(),
@@ -705,6 +780,33 @@ pub fn run_cycles<S: SurfaceLaw>(
         accommodated_after,
         cycles,
     })
+}
+
+/// How much the pull-out could still grow after the last cycle run: the last change
+/// d_n = p_n - p_(n-1), and the cycles after it as a geometric series of ratio
+/// r = |d_n / d_(n-1)| (capped at 0.9; 0.5 when only one change is known):
+/// |d_n| r/(1 - r).
+fn stopping_error<H>(cycles: &[Cycle<H>]) -> f64 {
+    let p: Vec<f64> = cycles
+        .iter()
+        .map(|c| c.unloading.pull_out_pressure)
+        .collect();
+    let n = p.len();
+    if n < 2 {
+        return 0.0;
+    }
+    let last = (p[n - 1] - p[n - 2]).abs();
+    let r = if n >= 3 {
+        let before = (p[n - 2] - p[n - 3]).abs();
+        if before > 0.0 {
+            (last / before).min(0.9)
+        } else {
+            0.9
+        }
+    } else {
+        0.5
+    };
+    last * r / (1.0 - r)
 }
 
 /// The residual of eq 17 at `d`, G(d) = integral_d^inf p_L + p_L(d)^2 t_s/(2E) - E_I

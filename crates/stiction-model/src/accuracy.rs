@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 /// A speed/accuracy trade, named by its targets (see [`Targets`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum Accuracy {
     /// d_e within 1e-9 sigma_s, pull-out within 1e-8 (relative).
@@ -34,6 +34,19 @@ pub struct Targets {
 }
 
 impl Accuracy {
+    /// Every mode, fastest last.
+    pub const ALL: [Accuracy; 4] = [
+        Accuracy::Reference,
+        Accuracy::Accurate,
+        Accuracy::Balanced,
+        Accuracy::Fast,
+    ];
+
+    /// The mode a scene names (`accurate`, `balanced`, `fast`, `reference`).
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|a| a.as_str() == name)
+    }
+
     /// The scene spelling.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -76,13 +89,13 @@ impl Accuracy {
         }
     }
 
-    /// The targets of the switch computations (`restoring`: K_s d0, Pa).
-    pub fn precision(self, restoring: f64) -> switch_1d::Precision {
+    /// The targets of the switch computations (d_e, pull-out); the pressure floor that
+    /// does not matter to a switch goes to the surface's quadrature ([`Self::quadrature`]).
+    pub fn precision(self) -> switch_1d::Precision {
         let t = self.targets();
         switch_1d::Precision {
             d_e: Self::MARGIN * t.d_e_tolerance_sigma,
             pull_out: Self::MARGIN * t.pull_out_tolerance,
-            pressure_floor: Self::MARGIN * t.pull_out_floor_of_restoring * restoring,
         }
     }
 }

@@ -1,0 +1,430 @@
+//! Stiction-free design: a **design point** is a switch scene run until accommodated (at
+//! most the scene's `cycles`), reduced to the pull-out ratio phi x largest pull-out /
+//! K_s d0 (> 1 sticks), and the engine of the crate `design-sweep` turns design points into
+//! the critical value of one scene field ([`threshold`]) and 1-D or 2-D maps over one or
+//! two fields ([`map`], shardable). User guide: `docs/design.md`.
+//!
+//! Every design point starts from the scene as written (before validation, so that
+//! defaults derived from other keys, such as `switch.film_youngs_modulus`, follow a varied
+//! key), with `until_accommodated = true`, `points = 0`, `elastic_comparison = false` and
+//! the accuracy mode given (else the scene's); the varied fields are set on the scene and
+//! the result is validated like a scene file.
+
+use crate::accuracy::Accuracy;
+use crate::error::ModelError;
+use crate::guards::Warning;
+use crate::keys::{self, num, Key, Kind};
+use crate::laws::LawRegistry;
+use crate::scene::Scene;
+use crate::spec::{Drive, SwitchSpec};
+use crate::switch::{SwitchModel, SwitchResult};
+use crate::{Progress, Silent};
+pub use design_sweep::{
+    DesignPoint, Grid, Labels, Map, MapRequest, PointError, Shard, Threshold, ThresholdOptions,
+};
+use std::collections::BTreeMap;
+use std::sync::Mutex;
+
+/// The name design points carry in messages (they have no file of their own).
+pub const POINT: &str = "design point";
+
+/// Runs design points of one scene: the field values are set on the scene, which is
+/// validated and run until accommodated. Shareable between threads; it keeps a tally of
+/// the physics guards the points raise.
+pub struct Evaluator<'a> {
+    base: Scene,
+    registry: &'a LawRegistry,
+    guards: Mutex<BTreeMap<&'static str, GuardTally>>,
+}
+
+#[derive(Debug, Clone)]
+struct GuardTally {
+    points: usize,
+    example: String,
+}
+
+/// The settings of a design point, applied to a scene before validation: run until
+/// accommodated (capped by the scene's `cycles`), no curves, no elastic comparison, and
+/// `accuracy` if given.
+pub fn design_scene(scene: &Scene, accuracy: Option<Accuracy>) -> Result<Scene, ModelError> {
+    let mut s = scene.clone();
+    s.set("until_accommodated", toml::Value::Boolean(true))?;
+    s.set("points", toml::Value::Integer(0))?;
+    s.set("elastic_comparison", toml::Value::Boolean(false))?;
+    if let Some(a) = accuracy {
+        s.set("accuracy", toml::Value::String(a.as_str().into()))?;
+    }
+    Ok(s)
+}
+
+impl<'a> Evaluator<'a> {
+    /// An evaluator for `base`: a switch scene as written, with the design settings applied
+    /// ([`design_scene`]), whose laws come from `registry`.
+    pub fn new(base: Scene, registry: &'a LawRegistry) -> Self {
+        Self {
+            base,
+            registry,
+            guards: Mutex::new(BTreeMap::new()),
+        }
+    }
+
+    /// The base scene.
+    pub fn base(&self) -> &Scene {
+        &self.base
+    }
+
+    /// The spec of one point: `values` (`section.key`, value in the key's SI unit) set on
+    /// the base scene, validated. A value outside a key's domain, or a rule between keys it
+    /// breaks, is [`PointError::OutOfDomain`] with the scene's message.
+    pub fn spec(&self, values: &[(&str, f64)]) -> Result<SwitchSpec, PointError> {
+        let mut s = self.base.clone();
+        let out = |e: ModelError| PointError::OutOfDomain(e.without_file());
+        for &(key, v) in values {
+            s.set_number(key, v).map_err(|e| out(e.into()))?;
+        }
+        SwitchSpec::new(&s, self.registry).map_err(out)
+    }
+
+    /// The full switch result of one point.
+    pub fn result(&self, values: &[(&str, f64)]) -> Result<SwitchResult, PointError> {
+        let spec = self.spec(values)?;
+        let model =
+            SwitchModel::build(&spec).map_err(|e| PointError::OutOfDomain(e.without_file()))?;
+        model.run(&Silent).map_err(|e| {
+            let m = e.without_file();
+            let no_end_of_impact = matches!(
+                e.cause(),
+                ModelError::Switch(switch_1d::SwitchError::EnergyNotAbsorbed { .. })
+            );
+            use contact_core::{Categorized, Category};
+            if e.category() == Category::Input || no_end_of_impact {
+                PointError::OutOfDomain(m)
+            } else {
+                PointError::Failed(m)
+            }
+        })
+    }
+
+    /// One design point. Errors of the run that are bad input (such as a derived impact
+    /// energy out of its range), and a scene for which the model has no end of impact
+    /// (the surface cannot absorb the impact energy, mostly where adhesion pulls harder
+    /// than the asperities push back), are `OutOfDomain`; the others `Failed`.
+    pub fn point(&self, values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
+        let r = self.result(values)?;
+        if !r.warnings.is_empty() {
+            let at = values
+                .iter()
+                .map(|(k, v)| format!("{k} = {}", num(*v)))
+                .collect::<Vec<_>>()
+                .join(", ");
+            if let Ok(mut g) = self.guards.lock() {
+                // each code once per point: a count never exceeds the points
+                let mut seen: Vec<&'static str> = Vec::new();
+                for w in &r.warnings {
+                    if seen.contains(&w.code) {
+                        continue;
+                    }
+                    seen.push(w.code);
+                    g.entry(w.code)
+                        .and_modify(|t| t.points += 1)
+                        .or_insert_with(|| GuardTally {
+                            points: 1,
+                            example: format!("at {at}: {}", w.message),
+                        });
+                }
+            }
+        }
+        Ok(design_point(&r))
+    }
+
+    /// The guards raised so far, one warning per kind with the number of points that
+    /// raised it out of `evaluated` and one example.
+    pub fn warnings(&self, evaluated: usize) -> Vec<Warning> {
+        let g = match self.guards.lock() {
+            Ok(g) => g,
+            Err(p) => p.into_inner(),
+        };
+        g.iter()
+            .map(|(code, t)| {
+                Warning::note(
+                    code,
+                    format!(
+                        "{} of {evaluated} design points raised it; e.g. {}",
+                        t.points, t.example
+                    ),
+                )
+            })
+            .collect()
+    }
+}
+
+/// A switch result reduced to a design point: a switch that does not close has ratio 0.
+pub fn design_point(r: &SwitchResult) -> DesignPoint {
+    if !r.closes {
+        return DesignPoint::does_not_close(r.restoring_pressure);
+    }
+    DesignPoint {
+        pull_out_ratio: r.pull_out_ratio,
+        largest_pull_out_pa: r.largest_pull_out,
+        restoring_pressure_pa: r.restoring_pressure,
+        cycles_to_accommodation: r.accommodated_after,
+        first_sticking_cycle: r.first_sticking_cycle,
+        sticks: r.stiction,
+        closes: true,
+    }
+}
+
+// ------------------------------------------------------------------ fields
+
+/// Whether a registry key is a field `design` may vary: a numeric key of a switch scene
+/// written `section.key`.
+fn variable(f: &Key) -> bool {
+    f.domain.is_numeric() && f.key.contains('.') && f.in_kind(Kind::Switch)
+}
+
+/// The fields `design` may vary, in registry order.
+pub fn variable_fields() -> impl Iterator<Item = &'static Key> {
+    keys::KEYS.iter().filter(|f| variable(f))
+}
+
+/// Checks that `field` may be varied on `base` (a validated switch spec): a known numeric
+/// key of a switch scene, and not in conflict with the scene's drive or counter-surface.
+/// The error (argument `vary`) says what to give.
+pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, ModelError> {
+    let list = || {
+        variable_fields()
+            .map(|f| f.key)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let fail = |why: String| Err(ModelError::argument("vary", field, why));
+    let Some(f) = keys::key(field).filter(|f| variable(f)) else {
+        let why = match keys::key(field) {
+            Some(f) if !f.key.contains('.') => format!(
+                "a design field: `{field}` is a top-level setting of the scene (set it in the scene file); the fields that can be varied are: {}",
+                list()
+            ),
+            Some(_) => format!(
+                "a numeric key of a switch scene; the fields that can be varied are: {}",
+                list()
+            ),
+            None => format!(
+                "a known field; the fields that can be varied are: {}",
+                list()
+            ),
+        };
+        return fail(why);
+    };
+    let spring = matches!(base.switch.drive, Drive::Spring { .. });
+    match field {
+        "switch.k_s" | "switch.voltage" if !spring => {
+            return fail(format!(
+                "a field that fits the scene's drive: it gives switch.impact_energy, from which K_s is derived (at U = V_PI); give `k_s = <Pa/m>` instead of `impact_energy` in [switch] to vary {field}{}",
+                if field == "switch.k_s" {
+                    ", or vary switch.impact_energy"
+                } else {
+                    " (voltage is then the step voltage, default V_PI)"
+                }
+            ))
+        }
+        "switch.impact_energy" if spring => {
+            return fail(
+                "a field that fits the scene's drive: it gives switch.k_s, from which E_I is derived (with the voltage); vary switch.k_s or switch.voltage, or give `impact_energy = <J/m^2>` instead of `k_s` (and no `voltage`) in [switch]"
+                    .into(),
+            )
+        }
+        "contact.counter_youngs_modulus"
+        | "contact.counter_poisson_ratio"
+        | "contact.counter_yield_stress"
+            if !matches!(base.contact.counter, crate::spec::Counter::Material { .. }) =>
+        {
+            return fail(format!(
+                "a field of this scene: {field} applies only to a counter-surface of another material: give `counter = \"material\"` with counter_youngs_modulus and counter_poisson_ratio in [contact], or vary contact.youngs_modulus"
+            ))
+        }
+        _ => {}
+    }
+    Ok(f)
+}
+
+/// The SI unit of a field, if it has one (not for pure numbers).
+pub fn unit(field: &str) -> Option<&'static str> {
+    keys::key(field)
+        .map(|f| f.unit)
+        .filter(|u| !u.is_empty() && *u != "-")
+}
+
+/// Plot and table labels of fields: their SI units.
+pub fn field_labels<'k>(keys: impl Iterator<Item = &'k str>) -> Labels {
+    keys.fold(Labels::new(), |l, k| match unit(k) {
+        Some(u) => l.with_unit(k, u),
+        None => l,
+    })
+}
+
+/// Plot title and SI units of the varied fields. It depends only on the map (the scene
+/// echo's title and the grid), so a merged map is drawn exactly like an unsharded one.
+pub fn map_labels(map: &Map) -> Labels {
+    let mut l = field_labels(map.grid().axes().iter().map(|a| a.field.as_str()));
+    if let Some(t) = map.scene().get("title").and_then(|t| t.as_str()) {
+        l = l.with_title(format!(
+            "{t}: pull-out ratio after accommodation ({})",
+            map.accuracy()
+        ));
+    }
+    l
+}
+
+/// The relative tolerance of the root on the critical value: a tenth of the mode's
+/// relative error of the ratio (no point refining below what the ratio can tell), within
+/// [1e-9, 1e-3].
+pub fn root_tolerance(accuracy: Accuracy) -> f64 {
+    (0.1 * accuracy.targets().pull_out_tolerance).clamp(1e-9, 1e-3)
+}
+
+/// The base of a design question: the scene with the design settings, validated once
+/// (so that a scene error is reported against the scene file).
+fn base_spec(
+    scene: &Scene,
+    registry: &LawRegistry,
+    accuracy: Option<Accuracy>,
+) -> Result<(Scene, SwitchSpec), ModelError> {
+    let s = design_scene(scene, accuracy)?;
+    let spec = SwitchSpec::new(&s, registry)?;
+    Ok((s, spec))
+}
+
+/// The answer of a threshold search: the crate's [`Threshold`], the accuracy mode, the
+/// field's unit and the guards the points raised.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ThresholdResult {
+    /// The search.
+    #[serde(flatten)]
+    pub threshold: Threshold,
+    /// The accuracy mode of the design points.
+    pub accuracy: &'static str,
+    /// The SI unit of the parameter, its critical value and uncertainty.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unit: Option<&'static str>,
+    /// Units for tables.
+    #[serde(skip)]
+    pub labels: Labels,
+    /// Guards the design points raised.
+    #[serde(skip)]
+    pub warnings: Vec<Warning>,
+}
+
+/// The critical value of `field` in [`from`, `to`] at which the pull-out ratio after
+/// accommodation crosses 1 (errors name the arguments `vary`, `from`, `to`).
+pub fn threshold(
+    scene: &Scene,
+    registry: &LawRegistry,
+    field: &str,
+    from: f64,
+    to: f64,
+    accuracy: Option<Accuracy>,
+) -> Result<ThresholdResult, ModelError> {
+    let (base, spec) = base_spec(scene, registry, accuracy)?;
+    let f = check_field(field, &spec)?;
+    for (name, v) in [("from", from), ("to", to)] {
+        if !f.domain.contains(v) {
+            return Err(ModelError::argument(
+                name,
+                num(v),
+                format!("inside the domain of {}: {}", f.key, f.domain.describe()),
+            ));
+        }
+    }
+    let accuracy = spec.common.accuracy;
+    let options = ThresholdOptions {
+        tolerance: root_tolerance(accuracy),
+        ratio_rel_error: accuracy.targets().pull_out_tolerance,
+        scan_points: None,
+    };
+    let ev = Evaluator::new(base, registry);
+    let t = design_sweep::threshold(f.key, from, to, |x| ev.point(&[(f.key, x)]), &options)?;
+    let warnings = ev.warnings(t.evaluations);
+    Ok(ThresholdResult {
+        labels: field_labels(std::iter::once(f.key)),
+        unit: unit(f.key),
+        accuracy: accuracy.as_str(),
+        threshold: t,
+        warnings,
+    })
+}
+
+/// A computed map (whole or one shard) with the guards its points raised.
+#[derive(Debug, Clone)]
+pub struct MapResult {
+    /// The map.
+    pub map: Map,
+    /// Units and title.
+    pub labels: Labels,
+    /// Guards the design points raised.
+    pub warnings: Vec<Warning>,
+}
+
+/// The request of a map: the scene with the design settings, the grid of `vary` (each
+/// `FIELD=FROM:TO:lin|log:N`), the part of it `shard` names (`K/N`); checked before any
+/// point runs (errors name the arguments `vary`, `shard`).
+pub fn map_request(
+    scene: &Scene,
+    registry: &LawRegistry,
+    vary: &[String],
+    shard: Option<&str>,
+    accuracy: Option<Accuracy>,
+) -> Result<(Scene, MapRequest), ModelError> {
+    let (base, spec) = base_spec(scene, registry, accuracy)?;
+    let grid = Grid::parse(vary)?;
+    for a in grid.axes() {
+        check_field(&a.field, &spec)?;
+    }
+    let shard = shard.map(Shard::parse).transpose()?;
+    Ok((
+        base,
+        MapRequest {
+            scene: spec.common.echo(),
+            grid,
+            accuracy: spec.common.accuracy.as_str().into(),
+            shard,
+        },
+    ))
+}
+
+/// A map of the pull-out ratio over the grid of `vary` (points in parallel, each reported
+/// to `progress`).
+pub fn map(
+    scene: &Scene,
+    registry: &LawRegistry,
+    vary: &[String],
+    shard: Option<&str>,
+    accuracy: Option<Accuracy>,
+    progress: &dyn Progress,
+) -> Result<MapResult, ModelError> {
+    let (base, request) = map_request(scene, registry, vary, shard, accuracy)?;
+    let ev = Evaluator::new(base, registry);
+    let total = match request.shard {
+        Some(s) => s.indices(request.grid.len()).count(),
+        None => request.grid.len(),
+    };
+    progress.start(total as u64, "design points");
+    let done = Mutex::new(0u64);
+    let map = design_sweep::run_map(
+        request,
+        |values| ev.point(values),
+        |n, _| {
+            if let Ok(mut d) = done.lock() {
+                // workers report out of order: the count only moves forward
+                *d = (*d).max(n as u64);
+                progress.set(*d);
+            }
+        },
+    );
+    progress.finish();
+    let warnings = ev.warnings(map.points().len());
+    Ok(MapResult {
+        labels: map_labels(&map),
+        map,
+        warnings,
+    })
+}

@@ -1,0 +1,244 @@
+//! The one error type of the model library: every crate's error kept typed, scene errors
+//! naming file, key, line and value, and a [`Category`] for every variant (bad input or a
+//! numerical failure), decided by the error that was made, never by its receiver.
+
+use contact_core::{Categorized, Category, CoreError, LawError};
+
+/// A scene error: a file that could not be read or parsed, a key that is unknown or
+/// missing, or a value outside its domain. Always bad input.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SceneError {
+    /// The file cannot be opened or read.
+    #[error("{file}: cannot read: {message}")]
+    Read {
+        /// The file.
+        file: String,
+        /// Why (the system's message).
+        message: String,
+    },
+    /// The file is larger than [`crate::scene::MAX_SCENE_BYTES`].
+    #[error("{file}: larger than {limit} bytes: not a scene file")]
+    TooLarge {
+        /// The file.
+        file: String,
+        /// The limit.
+        limit: u64,
+    },
+    /// The file is not UTF-8 text.
+    #[error("{file}: not UTF-8 text")]
+    NotText {
+        /// The file.
+        file: String,
+    },
+    /// The file is empty.
+    #[error("{file}: empty scene file")]
+    Empty {
+        /// The file.
+        file: String,
+    },
+    /// TOML or JSON syntax.
+    #[error("{file}: {message}")]
+    Parse {
+        /// The file.
+        file: String,
+        /// The parser's message (with line and column).
+        message: String,
+    },
+    /// A key no scene of this kind takes.
+    #[error("{file}: unknown key `{key}`{line} in a {kind} scene{hint}")]
+    Unknown {
+        /// The file.
+        file: String,
+        /// The key (`section.key`).
+        key: String,
+        /// " (line N)" where the key stands, or empty.
+        line: String,
+        /// The scene's kind.
+        kind: String,
+        /// "; did you mean ...?" or the keys of its section.
+        hint: String,
+    },
+    /// A value outside its domain (or of the wrong type).
+    #[error("{file}: invalid `{key}` = {value}{line}: must be {allowed}")]
+    Field {
+        /// The file.
+        file: String,
+        /// The key (`section.key`).
+        key: String,
+        /// The value as written (numbers in scientific notation).
+        value: String,
+        /// " (line N)" where the key stands, or empty.
+        line: String,
+        /// The domain or rule.
+        allowed: String,
+    },
+    /// A required key.
+    #[error("{file}: missing `{key}`: {explanation}")]
+    Missing {
+        /// The file.
+        file: String,
+        /// The key.
+        key: String,
+        /// What to give and why.
+        explanation: String,
+    },
+}
+
+impl SceneError {
+    /// The scene key this error is about, if any.
+    pub fn key(&self) -> Option<&str> {
+        match self {
+            SceneError::Unknown { key, .. }
+            | SceneError::Field { key, .. }
+            | SceneError::Missing { key, .. } => Some(key),
+            _ => None,
+        }
+    }
+
+    /// The message without the file (a design point has none of its own).
+    pub fn without_file(&self) -> String {
+        let full = self.to_string();
+        let file = match self {
+            SceneError::Read { file, .. }
+            | SceneError::TooLarge { file, .. }
+            | SceneError::NotText { file }
+            | SceneError::Empty { file }
+            | SceneError::Parse { file, .. }
+            | SceneError::Unknown { file, .. }
+            | SceneError::Field { file, .. }
+            | SceneError::Missing { file, .. } => file,
+        };
+        full.strip_prefix(&format!("{file}: "))
+            .map(str::to_string)
+            .unwrap_or(full)
+    }
+}
+
+/// Why a model could not be built or run.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ModelError {
+    /// A scene file or value.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// An argument of a run outside its domain, named as the library names it (`lambda`,
+    /// `vary`, `d_min`, ...); front ends say which of their options set it.
+    #[error("invalid {name} = {value}: must be {allowed}")]
+    Argument {
+        /// The argument's name in the library.
+        name: String,
+        /// The value as given.
+        value: String,
+        /// What is allowed.
+        allowed: String,
+    },
+    /// A law registered twice, or a law entry that is not usable.
+    #[error("law registry: {0}")]
+    Registry(String),
+    /// `contact-core`.
+    #[error(transparent)]
+    Core(#[from] CoreError),
+    /// `maugis-kim`.
+    #[error(transparent)]
+    MaugisKim(#[from] maugis_kim::MkError),
+    /// `asperity-plastic`.
+    #[error(transparent)]
+    Plastic(#[from] asperity_plastic::PlasticError),
+    /// `gw-surface`.
+    #[error(transparent)]
+    Surface(#[from] gw_surface::GwError),
+    /// `switch-1d`.
+    #[error(transparent)]
+    Switch(#[from] switch_1d::SwitchError),
+    /// A law through the trait seam (a user's law included).
+    #[error(transparent)]
+    Law(#[from] LawError),
+    /// `design-sweep`.
+    #[error(transparent)]
+    Design(#[from] design_sweep::DesignError),
+    /// `contact-law`.
+    #[error(transparent)]
+    ContactLaw(#[from] contact_law::LawError),
+    /// `calibrate`.
+    #[error(transparent)]
+    Calibrate(#[from] calibrate::CalibError),
+    /// An error while running a scene, with the scene's file.
+    #[error("{file}: {source}")]
+    InScene {
+        /// The scene file.
+        file: String,
+        /// What went wrong.
+        source: Box<ModelError>,
+    },
+}
+
+impl ModelError {
+    /// An argument error.
+    pub fn argument(
+        name: impl Into<String>,
+        value: impl Into<String>,
+        allowed: impl Into<String>,
+    ) -> Self {
+        ModelError::Argument {
+            name: name.into(),
+            value: value.into(),
+            allowed: allowed.into(),
+        }
+    }
+
+    /// The error itself, without the scene file it is reported in.
+    pub fn cause(&self) -> &ModelError {
+        match self {
+            ModelError::InScene { source, .. } => source.cause(),
+            e => e,
+        }
+    }
+
+    /// The same error, naming the scene it came from (scene errors name it already).
+    pub fn in_scene(self, file: &str) -> Self {
+        match self {
+            e @ (ModelError::Scene(_) | ModelError::InScene { .. }) => e,
+            e => ModelError::InScene {
+                file: file.to_string(),
+                source: Box::new(e),
+            },
+        }
+    }
+
+    /// The message without a scene file (design points have none of their own).
+    pub fn without_file(&self) -> String {
+        match self.cause() {
+            ModelError::Scene(s) => s.without_file(),
+            e => e.to_string(),
+        }
+    }
+}
+
+impl Categorized for ModelError {
+    /// Scene, argument and registry errors are input; the crates' errors carry their own
+    /// category (a law's parameter it refuses is input, a solver's failure numerical).
+    fn category(&self) -> Category {
+        match self {
+            ModelError::Scene(_) | ModelError::Argument { .. } | ModelError::Registry(_) => {
+                Category::Input
+            }
+            ModelError::Core(e) => e.category(),
+            ModelError::MaugisKim(e) => e.category(),
+            ModelError::Plastic(e) => e.category(),
+            ModelError::Surface(e) => e.category(),
+            ModelError::Switch(e) => e.category(),
+            ModelError::Law(e) => e.category(),
+            ModelError::Design(e) => e.category(),
+            ModelError::ContactLaw(e) => {
+                if e.is_input() {
+                    Category::Input
+                } else {
+                    Category::Numerical
+                }
+            }
+            ModelError::Calibrate(e) => e.category(),
+            ModelError::InScene { source, .. } => source.category(),
+        }
+    }
+}

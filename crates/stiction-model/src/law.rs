@@ -1,0 +1,666 @@
+//! The adhesive-contact law p(d; d_min, path) of a scene's rough surface, tabulated for a
+//! finite-element code.
+//!
+//! The surface is the scene's contact and surface sections at the run's accuracy. Its
+//! whole history is one number, d_min, the deepest separation reached
+//! (`GwHistory::Flat { deepest: d_min }`), so the law is a family of curves in d (m,
+//! separation from the mean plane of asperity heights to the flat): the virgin envelope,
+//! and for each tabulated d_min the approach (reload) branch and the retract branch. The
+//! tabulator of `contact-law` samples them from the surface directly and measures its
+//! interpolation error; this module supplies the surface ([`SceneSurface`]), the default
+//! range of histories and the measured error of the one-number history after a partial
+//! reload. A switch scene's default histories reach down past its impacts; a surface
+//! scene's down to its `unload_from`.
+
+use crate::accuracy::{Accuracy, Targets};
+use crate::error::ModelError;
+use crate::guards::{self, Validity, Warning};
+use crate::keys::num;
+use crate::spec::{ContactSpec, RoughSurface, RoughnessSpec, Spec, SurfaceSpec, SwitchSpec};
+use crate::switch::{rough_surface, Laws, SwitchModel};
+use crate::{Progress, Silent};
+use contact_core::numeric::{brent_from, expand_bracket, Sample, Tolerance};
+use contact_core::{Path as SurfacePath, SurfaceLaw};
+use contact_law::tabulate::{self, Branch, GridSpec, LawSource, ReloadSource, Tabulation};
+use contact_law::{ContactLaw, MeasuredError, PartialReloadError};
+use gw_surface::GwHistory;
+use serde::Serialize;
+use std::cell::Cell;
+use std::time::Instant;
+
+/// The default grid of histories starts this many sigma_s below the deepest end of impact
+/// of the scene's cycles, so that a cycle's own d_min (and a slightly harder impact) lies
+/// inside the table rather than on its edge.
+pub const BELOW_IMPACT_SIGMAS: f64 = 0.5;
+
+/// The "first touch" that ends the default grid of histories: the largest separation at
+/// which the virgin approach pressure reaches this fraction of the reference pressure (the
+/// pull-out pressure of the deepest history; the virgin pressure there for a law without
+/// adhesion). Shallower histories carry pressures below the error the law is allowed at
+/// the deepest history (1e-3 of its pull-out); taking the geometric first touch instead
+/// (the highest asperity, 9 sigma_s) would spend most branches on pressures below 1e-9 Pa
+/// (the rule in d_min is relative, and the Gaussian tail changes fastest there).
+pub const TOUCH_FRACTION: f64 = 1e-3;
+
+/// Partial reloads measured: the reload turns at d_min + f (approach reach - d_min) for
+/// each of these f.
+pub const TURN_FRACTIONS: [f64; 4] = [0.005, 0.02, 0.05, 0.15];
+
+/// Start points per branch: the branches reach the jump-in of the highest asperity (9
+/// sigma_s), so 96 points space the start grid by about 0.08 sigma_s. With 48 the
+/// midpoint test of the refinement let one branch in 500 of the paper's law keep an
+/// interval 2 sigma_s/10 wide with an error of 1.7e-3 between its quarter points; with 96
+/// none above 6.5e-4 in 300 points per branch (docs/contact-law.md section 7).
+pub const DEFAULT_POINTS: usize = 96;
+
+/// The accuracy mode of `stiction law` unless `--accuracy` says otherwise: the table's
+/// tolerance (2e-4 of |p| + |p_pull_out|) is 13 times the fast mode's measured pull-out
+/// error, and the tabulation makes about half a million surface evaluations.
+pub const DEFAULT_ACCURACY: Accuracy = Accuracy::Fast;
+
+/// Cap on the tabulated histories of the adaptive grid.
+pub const MAX_BRANCHES: usize = 1000;
+
+/// Separations per turning point of the partial-reload measurement.
+pub const RELOAD_POINTS: usize = 24;
+
+/// The scene's rough surface seen by the tabulator: one-number histories
+/// `GwHistory::Flat { deepest: d_min }`, with a count of surface evaluations for the
+/// progress bar.
+pub struct SceneSurface<'a> {
+    gw: &'a RoughSurface,
+    precision: switch_1d::Precision,
+    evaluations: Cell<u64>,
+    progress: &'a dyn Progress,
+}
+
+impl<'a> SceneSurface<'a> {
+    /// The source for `gw`; pull-outs are searched to `precision`; surface evaluations
+    /// are counted on `progress`.
+    pub fn new(
+        gw: &'a RoughSurface,
+        precision: switch_1d::Precision,
+        progress: &'a dyn Progress,
+    ) -> Self {
+        Self {
+            gw,
+            precision,
+            evaluations: Cell::new(0),
+            progress,
+        }
+    }
+
+    /// Surface pressure evaluations so far (tabulation, pull-out searches, measurements).
+    pub fn evaluations(&self) -> u64 {
+        self.evaluations.get()
+    }
+
+    fn tick(&self, n: u64) {
+        let done = self.evaluations.get() + n;
+        self.evaluations.set(done);
+        if done % 64 < n {
+            self.progress.set(done);
+        }
+    }
+
+    fn history(d_min: f64) -> GwHistory {
+        GwHistory::Flat { deepest: d_min }
+    }
+}
+
+impl LawSource for SceneSurface<'_> {
+    type Error = ModelError;
+
+    fn pressure(&self, d: f64, d_min: f64, branch: Branch) -> Result<f64, ModelError> {
+        self.tick(1);
+        let (history, path) = match branch {
+            Branch::Virgin => (GwHistory::VIRGIN, SurfacePath::Approach),
+            Branch::Approach => (Self::history(d_min), SurfacePath::Approach),
+            Branch::Retract => (Self::history(d_min), SurfacePath::Retract { from: d_min }),
+        };
+        Ok(self.gw.pressure(d, &history, path)?)
+    }
+
+    fn reach(&self, d_min: f64, branch: Branch) -> Result<f64, ModelError> {
+        let (history, path) = match branch {
+            Branch::Virgin => (GwHistory::VIRGIN, SurfacePath::Approach),
+            Branch::Approach => (Self::history(d_min), SurfacePath::Approach),
+            Branch::Retract => (Self::history(d_min), SurfacePath::Retract { from: d_min }),
+        };
+        Ok(self.gw.reach(&history, path)?)
+    }
+
+    /// The robust pull-out search of the switch model (`switch_1d::unload`): a scan of the
+    /// retract branch and golden-section refinement of its most tensile point.
+    fn pull_out(&self, d_min: f64) -> Result<(f64, f64), ModelError> {
+        let u = switch_1d::unload(self.gw, &Self::history(d_min), d_min, 0, self.precision)?;
+        // the scan and refinement cost a few dozen evaluations; counted roughly
+        self.tick(48);
+        Ok((u.pull_out_separation, -u.pull_out_pressure))
+    }
+
+    fn length_scale(&self) -> f64 {
+        self.gw.sigma_s()
+    }
+}
+
+impl ReloadSource for SceneSurface<'_> {
+    /// The surface itself after a partial reload: every asperity still remembers
+    /// delta_max = h - d_min, and the excursion that is now retracting reached d_turn, so
+    /// only the asperities that jumped in on the way down to d_turn are attached
+    /// (`Path::Retract { from: d_turn }`). Exact for this model: the history after a
+    /// reload from far that turned above d_min is still the one-number `Flat { d_min }`.
+    fn retract_after_reload(&self, d: f64, d_min: f64, d_turn: f64) -> Result<f64, ModelError> {
+        self.tick(1);
+        Ok(self.gw.pressure(
+            d,
+            &Self::history(d_min),
+            SurfacePath::Retract { from: d_turn },
+        )?)
+    }
+}
+
+/// How the tabulated histories were chosen.
+#[derive(Debug, Clone, Serialize)]
+pub struct Histories {
+    /// `adaptive` (the default range) or `uniform FROM:TO:N` (the user's grid).
+    pub rule: String,
+    /// Deepest tabulated history (m).
+    pub d_min_lo: f64,
+    /// Shallowest tabulated history (m).
+    pub d_min_hi: f64,
+    /// The deepest end-of-impact separation d_e of the scene's cycles (m), default range.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub deepest_d_e: Option<f64>,
+    /// The cycles' d_e (m), default range.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub cycles_d_e: Vec<f64>,
+    /// How far below the deepest d_e the grid starts (m), default range.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub below_deepest_d_e: Option<f64>,
+    /// The reference pressure of the first touch (Pa), default range.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_touch_reference: Option<f64>,
+    /// The first touch's fraction of it, default range.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_touch_fraction: Option<f64>,
+    /// Where the first asperity (at 9 sigma_s) jumps in on a virgin approach (m): the
+    /// virgin envelope is tabulated up to it, and zero beyond.
+    pub virgin_reach: f64,
+    /// In words.
+    pub description: String,
+}
+
+/// One tabulated history, for the summary.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct BranchSummary {
+    /// The history (m).
+    pub d_min: f64,
+    /// Virgin (= both branches') pressure at d_min (Pa).
+    pub start_pressure: f64,
+    /// Most tensile point of the retract branch: separation (m) ...
+    pub pull_out_d: f64,
+    /// ... and pressure (Pa, negative: tensile).
+    pub pull_out_pressure: f64,
+    /// Most tensile point of the approach branch (the pull-in well): separation (m) ...
+    pub approach_most_tensile_d: f64,
+    /// ... and pressure (Pa).
+    pub approach_most_tensile_pressure: f64,
+    /// Where the approach branch begins (the first asperity jumps in, m).
+    pub approach_reach: f64,
+    /// Where the retract branch ends (the last asperity jumps out, m).
+    pub retract_reach: f64,
+    /// Nodes of the approach and retract branches.
+    pub nodes: usize,
+}
+
+/// A law tabulation.
+#[derive(Debug, Clone, Serialize)]
+pub struct LawResult {
+    /// Plot and table title.
+    pub title: String,
+    /// The laws and modelling choices.
+    pub laws: Laws,
+    /// Whether the model holds at the deepest history tabulated.
+    pub validity: Validity,
+    /// Accuracy mode of the surface evaluations.
+    pub accuracy: Targets,
+    /// sigma_s (m).
+    pub sigma_s: f64,
+    /// The tabulated histories.
+    pub histories: Histories,
+    /// Number of tabulated histories.
+    pub branches: usize,
+    /// Nodes of the virgin envelope.
+    pub virgin_nodes: usize,
+    /// Nodes of all curves.
+    pub nodes: usize,
+    /// Refinement tolerance.
+    pub tolerance: f64,
+    /// Interpolation error measured against the surface at points off every grid.
+    pub measured_error: MeasuredError,
+    /// Error of the one-number history after a partial reload (the law retracts along the
+    /// branch of d_min; the surface along its own path from the turning point).
+    pub partial_reload: PartialReloadError,
+    /// Turning fractions of the partial-reload measurement.
+    pub partial_reload_turn_fractions: Vec<f64>,
+    /// Surface pressure evaluations of the tabulation and its measurement.
+    pub source_evaluations: usize,
+    /// All refinements met the tolerance before a cap.
+    pub converged: bool,
+    /// Wall time of the whole command (s).
+    pub seconds: f64,
+    /// Size of law.json (bytes).
+    pub law_json_bytes: usize,
+    /// The tabulated histories, one line each.
+    pub summary: Vec<BranchSummary>,
+    /// Guards raised.
+    pub warnings: Vec<Warning>,
+    /// law.json as text.
+    #[serde(skip)]
+    pub law_json: String,
+    /// The tabulated law (law.json, law.csv are written from it).
+    #[serde(skip)]
+    pub law: ContactLaw,
+}
+
+/// What a tabulation takes besides the scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LawOptions {
+    /// The histories as a uniform grid; None: adaptive over the default range.
+    pub d_min: Option<GridSpec>,
+    /// Start points per branch, 4..=100000.
+    pub points: usize,
+    /// Refinement tolerance on |p_table - p_direct| / (|p_direct| + |p_pull_out(d_min)|),
+    /// in (0, 0.1].
+    pub tolerance: f64,
+    /// The accuracy mode of the surface evaluations (None: [`DEFAULT_ACCURACY`]).
+    pub accuracy: Option<Accuracy>,
+}
+
+impl Default for LawOptions {
+    fn default() -> Self {
+        Self {
+            d_min: None,
+            points: DEFAULT_POINTS,
+            tolerance: 2e-4,
+            accuracy: None,
+        }
+    }
+}
+
+impl LawOptions {
+    /// Checks the options (errors name `points`, `tolerance`).
+    pub fn check(&self) -> Result<(), ModelError> {
+        if !(4..=100_000).contains(&self.points) {
+            return Err(ModelError::argument(
+                "points",
+                self.points.to_string(),
+                "an integer in [4, 100000]",
+            ));
+        }
+        if !(self.tolerance > 0.0 && self.tolerance <= 0.1) {
+            return Err(ModelError::argument(
+                "tolerance",
+                num(self.tolerance),
+                "in (0, 0.1]",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The scene a law is tabulated from: a switch (its impacts set the default depth) or a
+/// surface (its `unload_from`).
+#[derive(Debug, Clone, Copy)]
+pub enum LawScene<'a> {
+    /// A switch scene.
+    Switch(&'a SwitchSpec),
+    /// A surface scene.
+    Surface(&'a SurfaceSpec),
+}
+
+impl<'a> LawScene<'a> {
+    /// The law scene of a spec (an asperity scene has no surface).
+    pub fn of(spec: &'a Spec) -> Result<Self, ModelError> {
+        match spec {
+            Spec::Switch(s) => Ok(LawScene::Switch(s)),
+            Spec::Surface(s) => Ok(LawScene::Surface(s)),
+            Spec::Asperity(_) => Err(ModelError::argument(
+                "scene",
+                spec.common().scene.file(),
+                "a switch or surface scene (an asperity scene has no rough surface)",
+            )),
+        }
+    }
+
+    fn parts(&self) -> (&'a crate::spec::Common, &'a ContactSpec, RoughnessSpec) {
+        match *self {
+            LawScene::Switch(s) => (&s.common, &s.contact, s.roughness),
+            LawScene::Surface(s) => (&s.common, &s.contact, s.roughness),
+        }
+    }
+}
+
+/// Tabulates the law of `scene` with `options`, reporting surface evaluations to
+/// `progress`.
+pub fn tabulate(
+    scene: LawScene,
+    options: &LawOptions,
+    progress: &dyn Progress,
+) -> Result<LawResult, ModelError> {
+    let (common, _, _) = scene.parts();
+    tabulate_inner(scene, options, progress).map_err(|e| e.in_scene(common.scene.file()))
+}
+
+fn tabulate_inner(
+    scene: LawScene,
+    opts: &LawOptions,
+    progress: &dyn Progress,
+) -> Result<LawResult, ModelError> {
+    opts.check()?;
+    let start = Instant::now();
+    let (common, c, roughness) = scene.parts();
+    let accuracy = opts.accuracy.unwrap_or(DEFAULT_ACCURACY);
+    let laws = Laws::of(c);
+    // the surface exactly as `stiction surface` builds it (no absolute floor)
+    let gw = rough_surface(c, roughness, accuracy, 0.0, false)?;
+    let precision = accuracy.precision();
+    let sigma = gw.sigma_s();
+    let virgin_reach = gw.reach(&GwHistory::VIRGIN, SurfacePath::Approach)?;
+    let histories = match opts.d_min {
+        Some(g) => user_histories(g, sigma, virgin_reach)?,
+        None => default_histories(scene, accuracy, &gw, precision, virgin_reach)?,
+    };
+    let mut options = match opts.d_min {
+        Some(g) => Tabulation::uniform(g),
+        None => Tabulation::adaptive(histories.d_min_lo, histories.d_min_hi),
+    };
+    options.points_per_branch = opts.points;
+    options.tolerance = opts.tolerance;
+    options.max_branches = MAX_BRANCHES;
+
+    let source = SceneSurface::new(&gw, precision, progress);
+    // a rough expectation of the surface evaluations, for the bar only
+    let expected = match opts.d_min {
+        Some(g) => 400 * g.n as u64 + 60_000,
+        None => 550_000,
+    };
+    progress.start(expected, "surface evaluations");
+    // the bar is removed whether the tabulation succeeds or not
+    let result = tabulate::tabulate(&source, &options).and_then(|law| {
+        let partial =
+            tabulate::measure_partial_reload(&law, &source, &TURN_FRACTIONS, RELOAD_POINTS)?;
+        Ok((law, partial))
+    });
+    progress.finish();
+    let (mut law, partial) = result?;
+    let measured_error = law.measured_error().cloned().ok_or_else(|| {
+        contact_law::LawError::BadSource("the tabulator recorded no measured error".into())
+    })?;
+    law.set_partial_reload(partial.clone());
+    law.set_scene(scene_echo(common, &laws, accuracy, &histories))?;
+
+    let law_json = law.to_json_string();
+    let summary = branch_summary(&law);
+    let nodes = law.virgin().d().len() + summary.iter().map(|b| b.nodes).sum::<usize>();
+    let mut warnings = law_guards(c, &gw, &histories, &summary)?;
+    let tab = law.tabulation().cloned();
+    let converged = tab.as_ref().is_some_and(|t| t.converged);
+    if !converged {
+        warnings.push(Warning::note(
+            "law_not_converged",
+            format!(
+                "the table misses the tolerance {:e} where it could not refine (a cap on nodes or branches, or a --d-min grid, whose histories are not refined: give more of them or omit --d-min); the measured error (largest {:.2e}) says by how much",
+                opts.tolerance,
+                measured_error.max()
+            ),
+        ));
+    }
+    Ok(LawResult {
+        title: common.title.clone(),
+        laws,
+        validity: Validity::of(&warnings),
+        accuracy: accuracy.targets(),
+        sigma_s: sigma,
+        branches: law.branches().len(),
+        virgin_nodes: law.virgin().d().len(),
+        nodes,
+        tolerance: opts.tolerance,
+        measured_error,
+        partial_reload: partial,
+        partial_reload_turn_fractions: TURN_FRACTIONS.to_vec(),
+        source_evaluations: tab.as_ref().map_or(0, |t| t.source_evaluations),
+        converged,
+        seconds: start.elapsed().as_secs_f64(),
+        law_json_bytes: law_json.len(),
+        summary,
+        warnings,
+        law_json,
+        law,
+        histories,
+    })
+}
+
+/// The default range of histories: from the first touch down to BELOW_IMPACT_SIGMAS
+/// below the deepest end of impact of a switch scene's cycles, or down to a surface
+/// scene's `unload_from`.
+fn default_histories(
+    scene: LawScene,
+    accuracy: Accuracy,
+    gw: &RoughSurface,
+    precision: switch_1d::Precision,
+    virgin_reach: f64,
+) -> Result<Histories, ModelError> {
+    let sigma = gw.sigma_s();
+    let (lo, deepest, cycles_d_e) = match scene {
+        LawScene::Switch(s) => {
+            let mut quick = s.clone();
+            quick.common.points = 0;
+            quick.common.accuracy = accuracy;
+            quick.elastic_comparison = false;
+            let sw = SwitchModel::build(&quick)?.run(&Silent)?;
+            let cycles_d_e: Vec<f64> = sw.cycles.iter().map(|c| c.d_e).collect();
+            let Some(deepest) = cycles_d_e.iter().copied().reduce(f64::min) else {
+                return Err(ModelError::argument(
+                    "d_min",
+                    "the default range",
+                    "a grid FROM:TO:N: the scene's switch does not close, so its impacts reach no depth to tabulate down to",
+                ));
+            };
+            (deepest - BELOW_IMPACT_SIGMAS * sigma, Some(deepest), cycles_d_e)
+        }
+        LawScene::Surface(s) => match s.unload_from {
+            Some(u) => (u, None, Vec::new()),
+            None => {
+                return Err(ModelError::argument(
+                    "d_min",
+                    "the default range",
+                    "a grid FROM:TO:N, or unload_from in the surface scene (the depth to tabulate down to)",
+                ))
+            }
+        },
+    };
+    if lo >= virgin_reach {
+        return Err(ModelError::argument(
+            "d_min",
+            format!("{} m (the deepest history)", num(lo)),
+            format!(
+                "below the virgin reach {} m, where the first asperity touches",
+                num(virgin_reach)
+            ),
+        ));
+    }
+    let virgin = GwHistory::VIRGIN;
+    let p_v =
+        |d: f64| -> Result<f64, ModelError> { Ok(gw.pressure(d, &virgin, SurfacePath::Approach)?) };
+    let pull = switch_1d::unload(gw, &GwHistory::Flat { deepest: lo }, lo, 0, precision)?
+        .pull_out_pressure;
+    let reference = if pull > 0.0 { pull } else { p_v(lo)?.abs() };
+    let threshold = TOUCH_FRACTION * reference;
+    // down from the reach until the virgin pressure reaches the threshold, then the root
+    let g = |d: f64| -> Result<f64, ModelError> { Ok(p_v(d)?.abs() - threshold) };
+    let top = Sample {
+        x: virgin_reach,
+        f: g(virgin_reach)?,
+    };
+    let found = if top.f >= 0.0 {
+        Some(virgin_reach)
+    } else {
+        match expand_bracket("first touch", g, top, virgin_reach - 0.25 * sigma, 2.0, lo)? {
+            Some((above, below)) => Some(brent_from(
+                "first touch",
+                g,
+                below,
+                above,
+                Tolerance::absolute(1e-6 * sigma),
+            )?),
+            None => None,
+        }
+    };
+    let mut hi = found.unwrap_or(lo + 0.5 * (virgin_reach - lo));
+    if hi <= lo + 0.01 * sigma {
+        hi = (lo + 0.5 * sigma).min(lo + 0.5 * (virgin_reach - lo));
+    }
+    let down_to = match deepest {
+        Some(d) => format!(
+            "{} sigma_s = {:e} m below the deepest end-of-impact separation d_e = {:e} m of the scene's cycles, so that their own histories lie inside the table",
+            BELOW_IMPACT_SIGMAS,
+            BELOW_IMPACT_SIGMAS * sigma,
+            d
+        ),
+        None => "the surface scene's unload_from".into(),
+    };
+    let description = format!(
+        "adaptive grid of histories from the first touch d_min_hi = {:e} m (the largest separation at which the virgin approach pressure reaches {:e} of the reference pressure {:e} Pa, the pull-out pressure of the deepest history; shallower histories carry less) down to d_min_lo = {:e} m, {down_to}; refined where the law changes fastest. Histories above d_min_hi blend to zero at the virgin reach {:e} m (not measured).",
+        hi, TOUCH_FRACTION, reference, lo, virgin_reach
+    );
+    Ok(Histories {
+        rule: "adaptive".into(),
+        d_min_lo: lo,
+        d_min_hi: hi,
+        deepest_d_e: deepest,
+        cycles_d_e,
+        below_deepest_d_e: deepest.map(|_| BELOW_IMPACT_SIGMAS * sigma),
+        first_touch_reference: Some(reference),
+        first_touch_fraction: Some(TOUCH_FRACTION),
+        virgin_reach,
+        description,
+    })
+}
+
+/// The user's grid, checked against the surface: inside 20 sigma_s of the mean plane and
+/// below the virgin reach (no history is shallower than the first touch).
+fn user_histories(grid: GridSpec, sigma: f64, virgin_reach: f64) -> Result<Histories, ModelError> {
+    let nodes = grid.nodes();
+    let (lo, hi) = (nodes[0], nodes[nodes.len() - 1]);
+    let lim = 20.0 * sigma;
+    if lo < -lim || hi > lim {
+        return Err(ModelError::argument(
+            "d_min",
+            grid.to_string(),
+            format!(
+                "histories within 20 sigma_s = {} m of the mean plane",
+                num(lim)
+            ),
+        ));
+    }
+    if hi >= virgin_reach {
+        return Err(ModelError::argument(
+            "d_min",
+            grid.to_string(),
+            format!(
+                "histories below the virgin reach {} m, where the first asperity touches (the shallowest is {} m)",
+                num(virgin_reach),
+                num(hi)
+            ),
+        ));
+    }
+    Ok(Histories {
+        rule: format!("uniform {grid}"),
+        d_min_lo: lo,
+        d_min_hi: hi,
+        deepest_d_e: None,
+        cycles_d_e: Vec::new(),
+        below_deepest_d_e: None,
+        first_touch_reference: None,
+        first_touch_fraction: None,
+        virgin_reach,
+        description: format!(
+            "the user's uniform grid of {} histories from {:e} m to {:e} m; histories above the last blend to zero at the virgin reach {:e} m (not measured)",
+            grid.n, lo, hi, virgin_reach
+        ),
+    })
+}
+
+/// The scene echo of a law file: the resolved scene with what the law was made from.
+fn scene_echo(
+    common: &crate::spec::Common,
+    laws: &Laws,
+    accuracy: Accuracy,
+    histories: &Histories,
+) -> serde_json::Value {
+    let mut scene = common.echo();
+    let kind = common
+        .resolved
+        .get("kind")
+        .and_then(|k| k.as_str())
+        .unwrap_or("switch")
+        .to_string();
+    let resolved = serde_json::json!({
+        "file": common.scene.file(),
+        "kind": kind,
+        "laws": laws,
+        "eq1_yield_modulus": laws.yield_modulus,
+        "reload": laws.reload,
+        "surface": "Greenwood-Williamson surface of the scene's contact and surface sections; history one number, d_min (GwHistory::Flat { deepest: d_min })",
+        "accuracy": accuracy.targets(),
+        "histories": histories,
+    });
+    if let serde_json::Value::Object(o) = &mut scene {
+        o.insert("resolved".into(), resolved);
+    }
+    scene
+}
+
+/// One row per history: where it starts, its pull-out, its reaches, its size.
+fn branch_summary(law: &ContactLaw) -> Vec<BranchSummary> {
+    law.branches()
+        .iter()
+        .map(|b| BranchSummary {
+            d_min: b.d_min(),
+            start_pressure: b.retract().pressure()[0],
+            pull_out_d: b.pull_out().d,
+            pull_out_pressure: b.pull_out().pressure,
+            approach_most_tensile_d: b.approach().most_tensile().d,
+            approach_most_tensile_pressure: b.approach().most_tensile().pressure,
+            approach_reach: b.approach().reach(),
+            retract_reach: b.retract().reach(),
+            nodes: b.approach().d().len() + b.retract().d().len(),
+        })
+        .collect()
+}
+
+/// The guards at the deepest history tabulated.
+fn law_guards(
+    c: &ContactSpec,
+    gw: &RoughSurface,
+    histories: &Histories,
+    summary: &[BranchSummary],
+) -> Result<Vec<Warning>, ModelError> {
+    let lo = histories.d_min_lo;
+    let mut warnings = Vec::new();
+    if let Some(hi) = guards::fit_range_max(c) {
+        let share = gw.load_share_beyond(lo, &GwHistory::VIRGIN, SurfacePath::Approach, hi)?;
+        warnings.extend(guards::surface_beyond_fit(c, share, lo));
+    }
+    let compressive = gw
+        .pressure(lo, &GwHistory::VIRGIN, SurfacePath::Approach)?
+        .max(0.0);
+    let deepest_pull = summary
+        .first()
+        .map_or(0.0, |b| -b.pull_out_pressure.min(0.0));
+    warnings.extend(guards::pressures(c, compressive, deepest_pull));
+    warnings.extend(guards::adhesion_yields(c)?);
+    Ok(warnings)
+}

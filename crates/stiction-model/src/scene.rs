@@ -1,0 +1,442 @@
+//! Scenes as written: a TOML or JSON file (or a tree built in code), not yet validated.
+//!
+//! A [`Scene`] is a tree of keys and values with the name of its source. It is checked
+//! once, when a spec is made from it ([`crate::spec`]); until then it can be edited key by
+//! key ([`Scene::set`], the `--set section.key=value` of every command, a design point's
+//! varied field), and every edit is checked like a value of the file.
+
+use crate::error::SceneError;
+use crate::keys::{self, Kind};
+use std::io::Read;
+
+/// Scene files are at most this large (1 MiB): a scene is a few dozen lines.
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+
+/// The paper's Fig 2 scene, embedded.
+pub const PAPER_ASPERITY: &str = include_str!("../scenes/asperity.toml");
+/// The paper's rough-surface scene, embedded.
+pub const PAPER_SURFACE: &str = include_str!("../scenes/surface.toml");
+/// The paper's micro-switch scene (Fig 4), embedded: the main job.
+pub const PAPER_SWITCH: &str = include_str!("../scenes/switch.toml");
+
+/// The name the embedded scenes carry in messages.
+pub const PAPER_FILE: &str = "<default scene>";
+
+/// A scene as written, with the name of its source.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    file: String,
+    text: Option<String>,
+    tree: toml::Table,
+    is_paper: bool,
+}
+
+impl Scene {
+    /// The embedded paper scene of `kind`.
+    pub fn paper(kind: Kind) -> Self {
+        let text = match kind {
+            Kind::Asperity => PAPER_ASPERITY,
+            Kind::Surface => PAPER_SURFACE,
+            Kind::Switch => PAPER_SWITCH,
+        };
+        let mut s = Self::from_toml_str(PAPER_FILE, text).expect("the embedded scenes parse");
+        s.is_paper = true;
+        s
+    }
+
+    /// A scene from TOML text; `file` names it in messages.
+    pub fn from_toml_str(file: &str, text: &str) -> Result<Self, SceneError> {
+        if text.trim().is_empty() {
+            return Err(SceneError::Empty { file: file.into() });
+        }
+        let tree: toml::Table = toml::from_str(text).map_err(|e| SceneError::Parse {
+            file: file.into(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        Ok(Self {
+            file: file.into(),
+            text: Some(text.to_string()),
+            tree,
+            is_paper: false,
+        })
+    }
+
+    /// A scene from JSON text (an object of the same keys as the TOML form; an infinite
+    /// yield stress is the string `"inf"`); `file` names it in messages.
+    pub fn from_json_str(file: &str, text: &str) -> Result<Self, SceneError> {
+        if text.trim().is_empty() {
+            return Err(SceneError::Empty { file: file.into() });
+        }
+        let v: serde_json::Value = serde_json::from_str(text).map_err(|e| SceneError::Parse {
+            file: file.into(),
+            message: format!("JSON parse error: {e}"),
+        })?;
+        let mut s = Self::from_json_value(file, &v)?;
+        s.text = Some(text.to_string());
+        Ok(s)
+    }
+
+    /// A scene from a tree of keys and values built in code; `file` names it.
+    pub fn from_tree(file: &str, tree: toml::Table) -> Self {
+        Self {
+            file: file.into(),
+            text: None,
+            tree,
+            is_paper: false,
+        }
+    }
+
+    /// A scene from a JSON value (an object), as front ends that hold data structures
+    /// build it (a Python dict).
+    pub fn from_json_value(file: &str, v: &serde_json::Value) -> Result<Self, SceneError> {
+        let tree = match json_to_toml(file, "", v)? {
+            toml::Value::Table(t) => t,
+            _ => {
+                return Err(SceneError::Parse {
+                    file: file.into(),
+                    message: "a scene is an object of keys and values".into(),
+                })
+            }
+        };
+        Ok(Self {
+            file: file.into(),
+            text: None,
+            tree,
+            is_paper: false,
+        })
+    }
+
+    /// Reads a scene file: JSON if its name ends in `.json` or its text starts with `{`,
+    /// TOML otherwise. Files larger than [`MAX_SCENE_BYTES`] are refused before they are
+    /// read whole (a FIFO or `/dev/zero` stops at the limit).
+    pub fn read(path: &std::path::Path) -> Result<Self, SceneError> {
+        let file = path.display().to_string();
+        let read = |e: std::io::Error| SceneError::Read {
+            file: file.clone(),
+            message: e.to_string(),
+        };
+        if path.is_dir() {
+            return Err(SceneError::Read {
+                file,
+                message: "it is a folder, not a scene file".into(),
+            });
+        }
+        let f = std::fs::File::open(path).map_err(read)?;
+        let mut bytes = Vec::new();
+        f.take(MAX_SCENE_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(read)?;
+        if bytes.len() as u64 > MAX_SCENE_BYTES {
+            return Err(SceneError::TooLarge {
+                file,
+                limit: MAX_SCENE_BYTES,
+            });
+        }
+        let text =
+            String::from_utf8(bytes).map_err(|_| SceneError::NotText { file: file.clone() })?;
+        let json = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+            || text.trim_start().starts_with('{');
+        if json {
+            Self::from_json_str(&file, &text)
+        } else {
+            Self::from_toml_str(&file, &text)
+        }
+    }
+
+    /// Reads `path`, or the embedded paper scene of `kind` when `path` is None.
+    pub fn read_or_paper(path: Option<&std::path::Path>, kind: Kind) -> Result<Self, SceneError> {
+        match path {
+            Some(p) => Self::read(p),
+            None => Ok(Self::paper(kind)),
+        }
+    }
+
+    /// The name of the source in messages.
+    pub fn file(&self) -> &str {
+        &self.file
+    }
+
+    /// Whether this is an embedded paper scene, unedited.
+    pub fn is_paper(&self) -> bool {
+        self.is_paper
+    }
+
+    /// The tree of keys and values.
+    pub fn tree(&self) -> &toml::Table {
+        &self.tree
+    }
+
+    /// The scene's `title`, if it gives one.
+    pub fn title(&self) -> Option<&str> {
+        self.tree.get("title").and_then(|t| t.as_str())
+    }
+
+    /// The title of plots and tables: the scene's, else the file name.
+    pub fn display_title(&self) -> String {
+        self.title()
+            .map(str::to_string)
+            .unwrap_or_else(|| self.file.clone())
+    }
+
+    /// The line of the source text where `key` (`section.key`) is written, if known.
+    pub fn line_of(&self, key: &str) -> Option<usize> {
+        locate(self.text.as_deref()?, key)
+    }
+
+    /// The scene's kind: its `kind` key, else inferred (`delta_max`: asperity; a `[switch]`
+    /// section: switch; a `[surface]` section: surface).
+    pub fn kind(&self) -> Result<Kind, SceneError> {
+        if let Some(v) = self.tree.get("kind") {
+            return match v.as_str() {
+                Some("asperity") => Ok(Kind::Asperity),
+                Some("surface") => Ok(Kind::Surface),
+                Some("switch") => Ok(Kind::Switch),
+                _ => Err(SceneError::Field {
+                    file: self.file.clone(),
+                    key: "kind".into(),
+                    value: v.to_string(),
+                    line: String::new(),
+                    allowed: keys::Domain::Choice(keys::KINDS).describe(),
+                }),
+            };
+        }
+        if self.tree.contains_key("delta_max") {
+            Ok(Kind::Asperity)
+        } else if self.tree.contains_key("switch") {
+            Ok(Kind::Switch)
+        } else if self.tree.contains_key("surface") {
+            Ok(Kind::Surface)
+        } else {
+            Err(SceneError::Missing {
+                file: self.file.clone(),
+                key: "kind".into(),
+                explanation: "the scene has no delta_max, [switch] or [surface]: say which it is with kind = \"asperity\" | \"surface\" | \"switch\"".into(),
+            })
+        }
+    }
+
+    /// Sets `key` (`section.key`, sections created as needed) to `value`. The value is
+    /// checked when a spec is made, like a value of the file. An edited scene is no longer
+    /// the paper's.
+    pub fn set(&mut self, key: &str, value: toml::Value) -> Result<(), SceneError> {
+        let parts: Vec<&str> = key.split('.').collect();
+        if parts.iter().any(|p| p.is_empty()) {
+            return Err(SceneError::Parse {
+                file: self.file.clone(),
+                message: format!("`{key}` is not a key (section.key)"),
+            });
+        }
+        let mut node = &mut self.tree;
+        for part in &parts[..parts.len() - 1] {
+            let entry = node
+                .entry(part.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            node = match entry {
+                toml::Value::Table(t) => t,
+                other => {
+                    return Err(SceneError::Parse {
+                        file: self.file.clone(),
+                        message: format!(
+                            "`{part}` of `{key}` is {}, not a section",
+                            other.type_str()
+                        ),
+                    })
+                }
+            };
+        }
+        node.insert(parts[parts.len() - 1].to_string(), value);
+        self.is_paper = false;
+        self.text = None;
+        Ok(())
+    }
+
+    /// Sets a numeric key: an integer for a count key of the registry, a float otherwise
+    /// (infinity included: a yield stress).
+    pub fn set_number(&mut self, key: &str, value: f64) -> Result<(), SceneError> {
+        let v = match keys::key(key).map(|k| k.domain) {
+            Some(keys::Domain::Count { .. }) => {
+                if value.fract() != 0.0 || value < 0.0 || value > i64::MAX as f64 {
+                    return Err(SceneError::Field {
+                        file: self.file.clone(),
+                        key: key.into(),
+                        value: keys::num(value),
+                        line: String::new(),
+                        allowed: "an integer".into(),
+                    });
+                }
+                toml::Value::Integer(value as i64)
+            }
+            _ => toml::Value::Float(value),
+        };
+        self.set(key, v)
+    }
+
+    /// Sets `key` from text as a command line gives it (`--set contact.reload=bounded`): a
+    /// TOML value (`1e-9`, `"bounded"`, `true`, `[1, 2, 3]`), or a bare word as a string.
+    pub fn set_text(&mut self, key: &str, text: &str) -> Result<(), SceneError> {
+        self.set(key, parse_value(text))
+    }
+
+    /// Removes `key` (`section.key`) if present.
+    pub fn remove(&mut self, key: &str) {
+        let parts: Vec<&str> = key.split('.').collect();
+        let mut node = &mut self.tree;
+        for part in &parts[..parts.len() - 1] {
+            match node.get_mut(*part) {
+                Some(toml::Value::Table(t)) => node = t,
+                _ => return,
+            }
+        }
+        node.remove(parts[parts.len() - 1]);
+        self.is_paper = false;
+        self.text = None;
+    }
+
+    /// The value of `key` (`section.key`), if present.
+    pub fn get(&self, key: &str) -> Option<&toml::Value> {
+        let mut node = &self.tree;
+        let parts: Vec<&str> = key.split('.').collect();
+        for part in &parts[..parts.len() - 1] {
+            node = node.get(*part)?.as_table()?;
+        }
+        node.get(parts[parts.len() - 1])
+    }
+}
+
+/// A value as a command line gives it: TOML if it parses as one, else a string.
+pub fn parse_value(text: &str) -> toml::Value {
+    let doc = format!("v = {text}");
+    match toml::from_str::<toml::Table>(&doc) {
+        Ok(mut t) => t.remove("v").unwrap_or(toml::Value::String(text.into())),
+        Err(_) => toml::Value::String(text.trim().to_string()),
+    }
+}
+
+fn json_to_toml(file: &str, at: &str, v: &serde_json::Value) -> Result<toml::Value, SceneError> {
+    use serde_json::Value as J;
+    Ok(match v {
+        J::Null => {
+            return Err(SceneError::Field {
+                file: file.into(),
+                key: if at.is_empty() {
+                    "(top)".into()
+                } else {
+                    at.into()
+                },
+                value: "null".into(),
+                line: String::new(),
+                allowed: "a value (leave the key out for its default; write \"inf\" for infinity)"
+                    .into(),
+            })
+        }
+        J::Bool(b) => toml::Value::Boolean(*b),
+        J::Number(n) => match n.as_i64() {
+            Some(i) => toml::Value::Integer(i),
+            None => toml::Value::Float(n.as_f64().unwrap_or(f64::NAN)),
+        },
+        J::String(s) => toml::Value::String(s.clone()),
+        J::Array(a) => toml::Value::Array(
+            a.iter()
+                .enumerate()
+                .map(|(i, x)| json_to_toml(file, &format!("{at}[{i}]"), x))
+                .collect::<Result<_, _>>()?,
+        ),
+        J::Object(o) => {
+            let mut t = toml::Table::new();
+            for (k, x) in o {
+                let key = if at.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{at}.{k}")
+                };
+                t.insert(k.clone(), json_to_toml(file, &key, x)?);
+            }
+            toml::Value::Table(t)
+        }
+    })
+}
+
+/// The 1-based line where `key` (`section.key`) is written in TOML `text`: the line
+/// `leaf = ...` inside the section's `[section]` header (or at the top for top-level keys).
+fn locate(text: &str, key: &str) -> Option<usize> {
+    let (section, leaf) = match key.rsplit_once('.') {
+        Some((s, l)) => (s, l),
+        None => ("", key),
+    };
+    let leaf = leaf.split('[').next().unwrap_or(leaf);
+    let mut current = String::new();
+    for (i, line) in text.lines().enumerate() {
+        let l = line.trim();
+        if let Some(h) = l.strip_prefix('[') {
+            current = h
+                .split(']')
+                .next()
+                .unwrap_or("")
+                .trim()
+                .trim_matches('[')
+                .to_string();
+            continue;
+        }
+        if current == section {
+            if let Some((k, _)) = l.split_once('=') {
+                if k.trim() == leaf {
+                    return Some(i + 1);
+                }
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_are_found_on_their_lines() {
+        let t = "title = \"x\"\n[contact]\nradius = 1\n\n[switch]\nd0 = 2\nradius = 3\n";
+        assert_eq!(locate(t, "title"), Some(1));
+        assert_eq!(locate(t, "contact.radius"), Some(3));
+        assert_eq!(locate(t, "switch.radius"), Some(7));
+        assert_eq!(locate(t, "surface.sigma_s"), None);
+    }
+
+    #[test]
+    fn values_from_a_command_line_are_toml_or_words() {
+        assert_eq!(parse_value("1e-9"), toml::Value::Float(1e-9));
+        assert_eq!(parse_value("10"), toml::Value::Integer(10));
+        assert_eq!(
+            parse_value("bounded"),
+            toml::Value::String("bounded".into())
+        );
+        assert_eq!(
+            parse_value("\"bounded\""),
+            toml::Value::String("bounded".into())
+        );
+        assert_eq!(parse_value("true"), toml::Value::Boolean(true));
+        assert_eq!(parse_value("inf"), toml::Value::Float(f64::INFINITY));
+    }
+
+    #[test]
+    fn json_and_toml_scenes_are_the_same_tree() {
+        let t = Scene::from_toml_str("t", "a = 1\n[b]\nc = \"x\"\nd = [1.5, 2.0]\n").unwrap();
+        let j = Scene::from_json_str("j", r#"{"a": 1, "b": {"c": "x", "d": [1.5, 2.0]}}"#).unwrap();
+        assert_eq!(t.tree(), j.tree());
+        let e = Scene::from_json_str("j", r#"{"contact": {"radius": null}}"#).unwrap_err();
+        assert!(e.to_string().contains("contact.radius"), "{e}");
+    }
+
+    #[test]
+    fn the_kind_is_given_or_inferred() {
+        assert_eq!(Scene::paper(Kind::Switch).kind().unwrap(), Kind::Switch);
+        assert_eq!(Scene::paper(Kind::Surface).kind().unwrap(), Kind::Surface);
+        assert_eq!(Scene::paper(Kind::Asperity).kind().unwrap(), Kind::Asperity);
+        let mut s = Scene::paper(Kind::Switch);
+        s.set("kind", toml::Value::String("surface".into()))
+            .unwrap();
+        assert_eq!(s.kind().unwrap(), Kind::Surface);
+        assert!(!s.is_paper());
+    }
+}

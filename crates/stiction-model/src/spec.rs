@@ -1,0 +1,1131 @@
+//! Validated scenes: every value checked once, against the key registry
+//! ([`crate::keys::KEYS`]) and the law registry ([`crate::laws::LawRegistry`]), the rules
+//! between keys applied, the laws built. A spec holds typed values only: what a model
+//! needs, with no `Option` that validation has already decided.
+//!
+//! ```
+//! use stiction_model::{keys::Kind, laws::LawRegistry, scene::Scene, spec::SwitchSpec};
+//! let spec = SwitchSpec::new(&Scene::paper(Kind::Switch), &LawRegistry::builtin())?;
+//! assert_eq!(spec.cycles, 10);
+//! assert_eq!(spec.contact.plasticity.name, "etsion_kadin");
+//! # Ok::<(), stiction_model::ModelError>(())
+//! ```
+
+use crate::accuracy::Accuracy;
+use crate::error::{ModelError, SceneError};
+use crate::keys::{self, num, Default, Domain, Key, Kind};
+use crate::laws::{
+    self, DynAdhesion, DynPlasticity, LawContext, LawParams, LawRegistry, Param, ParamValue,
+};
+use crate::scene::Scene;
+use asperity_plastic::{Elastic, ElastoPlasticAsperity, PlasticError};
+pub use asperity_plastic::{Reload, YieldModulus};
+use contact_core::{Categorized, Category, Material, MaterialProps, Pair};
+use std::collections::BTreeSet;
+use std::sync::Arc;
+
+/// The most curve points (points x cycles) a switch run may write.
+pub const MAX_CURVE_POINTS: f64 = 1e7;
+
+/// The counter-surface of a contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Counter {
+    /// A rigid flat.
+    Rigid,
+    /// The same film (two identical surfaces).
+    Same,
+    /// Another material.
+    Material {
+        /// Its E (Pa).
+        youngs_modulus: f64,
+        /// Its nu.
+        poisson_ratio: f64,
+        /// Its S_Y (Pa; infinite: never yields).
+        yield_stress: f64,
+    },
+}
+
+impl Counter {
+    /// The scene spelling.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Counter::Rigid => "rigid",
+            Counter::Same => "same",
+            Counter::Material { .. } => "material",
+        }
+    }
+}
+
+/// A law chosen by name, with its parameters and the law built from them.
+#[derive(Clone)]
+pub struct Chosen<L> {
+    /// The registered name.
+    pub name: String,
+    /// Its validated parameters.
+    pub params: LawParams,
+    /// The law.
+    pub law: L,
+}
+
+impl<L> std::fmt::Debug for Chosen<L> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Chosen")
+            .field("name", &self.name)
+            .field("params", &self.params)
+            .finish()
+    }
+}
+
+/// The asperity every model uses: any registered plasticity law with any registered
+/// adhesion law.
+pub type Asperity = ElastoPlasticAsperity<DynPlasticity, DynAdhesion>;
+/// The rough surface every model uses.
+pub type RoughSurface = gw_surface::GreenwoodWilliamson<Asperity>;
+
+/// The contact section: the pair, its constants, the modelling choices and the laws.
+#[derive(Debug, Clone)]
+pub struct ContactSpec {
+    /// E of the asperity-carrying film (Pa).
+    pub youngs_modulus: f64,
+    /// Its nu.
+    pub poisson_ratio: f64,
+    /// Its S_Y (Pa; infinite: never yields).
+    pub yield_stress: f64,
+    /// Asperity tip radius R (m).
+    pub radius: f64,
+    /// Work of adhesion w (J/m^2).
+    pub work_of_adhesion: f64,
+    /// Dugdale range z0 (m).
+    pub z0: f64,
+    /// The counter-surface.
+    pub counter: Counter,
+    /// The reading of eq 1.
+    pub yield_modulus: YieldModulus,
+    /// The reload rule.
+    pub reload: Reload,
+    /// The adhesion law.
+    pub adhesion: Chosen<DynAdhesion>,
+    /// The plasticity law.
+    pub plasticity: Chosen<DynPlasticity>,
+    /// The pair (E*, K, the radius), built once.
+    pub pair: Pair,
+}
+
+impl ContactSpec {
+    /// The asperity of the scene's laws (with its reload rule).
+    pub fn asperity(&self) -> Asperity {
+        ElastoPlasticAsperity::new(self.plasticity.law.clone(), self.adhesion.law.clone())
+            .with_reload(self.reload)
+    }
+
+    /// The same asperity with a plasticity law that never yields (the elastic comparison).
+    pub fn elastic_asperity(&self) -> Asperity {
+        let elastic: DynPlasticity =
+            Arc::new(Elastic::new(self.radius).expect("a validated radius is positive"));
+        ElastoPlasticAsperity::new(elastic, self.adhesion.law.clone())
+    }
+
+    /// The smaller yield stress of the two bodies (Pa; infinite if neither yields).
+    pub fn weakest_yield_stress(&self) -> f64 {
+        match self.counter {
+            Counter::Material { yield_stress, .. } => self.yield_stress.min(yield_stress),
+            _ => self.yield_stress,
+        }
+    }
+
+    /// Dugdale stress sigma0 = w/z0 (Pa): the strength of the interface.
+    pub fn dugdale_stress(&self) -> f64 {
+        self.work_of_adhesion / self.z0
+    }
+
+    /// Maugis' transition parameter lambda at the initial radius (eq 6).
+    pub fn lambda(&self) -> f64 {
+        maugis_kim::Scales::lambda(self.pair.k(), self.work_of_adhesion, self.z0, self.radius)
+    }
+}
+
+/// The roughness of the equivalent surface (eq 14).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoughnessSpec {
+    /// sigma_s (m).
+    pub sigma_s: f64,
+    /// N (1/m^2).
+    pub asperity_density: f64,
+}
+
+/// How the switch is driven: which of E_I, K_s, U the scene gives.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Drive {
+    /// E_I given (J/m^2); K_s derived so that release at U = V_PI gives it.
+    ImpactEnergy(f64),
+    /// K_s given (Pa/m) with the step voltage U (V; None: V_PI); E_I derived.
+    Spring {
+        /// K_s (Pa/m).
+        k_s: f64,
+        /// U (V), if given.
+        voltage: Option<f64>,
+    },
+}
+
+/// Table 2 and the drive.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SwitchGeometrySpec {
+    /// Initial gap d0 (m).
+    pub d0: f64,
+    /// Dielectric thickness t_d (m).
+    pub t_d: f64,
+    /// Relative permittivity.
+    pub epsilon_r: f64,
+    /// Vacuum permittivity (F/m).
+    pub epsilon_0: f64,
+    /// Film thickness t_s of eq 17 (m).
+    pub film_thickness: f64,
+    /// Film modulus of eq 17 (Pa).
+    pub film_youngs_modulus: f64,
+    /// The drive.
+    pub drive: Drive,
+    /// Fraction phi of the electrode in contact.
+    pub contact_area_fraction: f64,
+}
+
+/// What every validated scene carries: its source, title and accuracy mode.
+#[derive(Debug, Clone)]
+pub struct Common {
+    /// The scene it was made from (for echoes and design variations).
+    pub scene: Scene,
+    /// The title of plots and tables.
+    pub title: String,
+    /// Accuracy mode.
+    pub accuracy: Accuracy,
+    /// Points per written curve.
+    pub points: usize,
+    /// Every key with the value it resolved to (defaults filled), for echoes.
+    pub resolved: toml::Table,
+}
+
+impl Common {
+    /// The resolved scene as JSON (non-finite numbers as their names, `"inf"`).
+    pub fn echo(&self) -> serde_json::Value {
+        toml_to_json(&toml::Value::Table(self.resolved.clone()))
+    }
+}
+
+/// A validated asperity scene.
+#[derive(Debug, Clone)]
+pub struct AsperitySpec {
+    /// Source, title, accuracy, points.
+    pub common: Common,
+    /// The contact.
+    pub contact: ContactSpec,
+    /// The maximum interferences (m).
+    pub delta_max: Vec<f64>,
+}
+
+/// A validated surface scene.
+#[derive(Debug, Clone)]
+pub struct SurfaceSpec {
+    /// Source, title, accuracy, points.
+    pub common: Common,
+    /// The contact.
+    pub contact: ContactSpec,
+    /// The roughness.
+    pub roughness: RoughnessSpec,
+    /// Smallest separation of the loading curve (m), if given.
+    pub d_start: Option<f64>,
+    /// Load to this separation and unload (m), if given.
+    pub unload_from: Option<f64>,
+}
+
+/// A validated switch scene.
+#[derive(Debug, Clone)]
+pub struct SwitchSpec {
+    /// Source, title, accuracy, points.
+    pub common: Common,
+    /// The contact.
+    pub contact: ContactSpec,
+    /// The roughness.
+    pub roughness: RoughnessSpec,
+    /// The switch.
+    pub switch: SwitchGeometrySpec,
+    /// Cycles (the cap with `until_accommodated`).
+    pub cycles: usize,
+    /// Stop once accommodated.
+    pub until_accommodated: bool,
+    /// Accommodation tolerance.
+    pub accommodation_tolerance: f64,
+    /// Run the elastic comparison.
+    pub elastic_comparison: bool,
+}
+
+/// Any validated scene.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub enum Spec {
+    /// One asperity.
+    Asperity(AsperitySpec),
+    /// The rough surface.
+    Surface(SurfaceSpec),
+    /// The switch.
+    Switch(SwitchSpec),
+}
+
+impl Spec {
+    /// Validates `scene` as the kind it says or implies ([`Scene::kind`]).
+    pub fn new(scene: &Scene, registry: &LawRegistry) -> Result<Self, ModelError> {
+        Ok(match scene.kind()? {
+            Kind::Asperity => Spec::Asperity(AsperitySpec::new(scene, registry)?),
+            Kind::Surface => Spec::Surface(SurfaceSpec::new(scene, registry)?),
+            Kind::Switch => Spec::Switch(SwitchSpec::new(scene, registry)?),
+        })
+    }
+
+    /// Source, title, accuracy, points.
+    pub fn common(&self) -> &Common {
+        match self {
+            Spec::Asperity(s) => &s.common,
+            Spec::Surface(s) => &s.common,
+            Spec::Switch(s) => &s.common,
+        }
+    }
+
+    /// The contact section.
+    pub fn contact(&self) -> &ContactSpec {
+        match self {
+            Spec::Asperity(s) => &s.contact,
+            Spec::Surface(s) => &s.contact,
+            Spec::Switch(s) => &s.contact,
+        }
+    }
+}
+
+impl AsperitySpec {
+    /// Validates an asperity scene.
+    pub fn new(scene: &Scene, registry: &LawRegistry) -> Result<Self, ModelError> {
+        let mut r = Reader::new(scene, Kind::Asperity);
+        let contact = r.contact(registry)?;
+        let hi = 1e3 * contact.radius;
+        let key = "delta_max";
+        let delta_max = match r.take(key) {
+            None => return Err(r.missing(key).into()),
+            Some(toml::Value::Array(a)) if !a.is_empty() => {
+                let mut out = Vec::with_capacity(a.len());
+                for (i, v) in a.iter().enumerate() {
+                    let d = as_number(v).unwrap_or(f64::NAN);
+                    if !(d.is_finite() && d > 0.0 && d <= hi) {
+                        return Err(r
+                            .fail(
+                                &format!("{key}[{i}]"),
+                                show(v),
+                                format!("finite and in (0, {}] (1e3 radius)", num(hi)),
+                            )
+                            .into());
+                    }
+                    out.push(d);
+                }
+                out
+            }
+            Some(v) => return Err(r.fail(key, show(&v), "a non-empty list of numbers").into()),
+        };
+        r.record(
+            key,
+            toml::Value::Array(delta_max.iter().map(|&d| toml::Value::Float(d)).collect()),
+        );
+        let common = r.common(2)?;
+        r.finish()?;
+        Ok(Self {
+            common: common.with_resolved(r.resolved),
+            contact,
+            delta_max,
+        })
+    }
+}
+
+impl SurfaceSpec {
+    /// Validates a surface scene.
+    pub fn new(scene: &Scene, registry: &LawRegistry) -> Result<Self, ModelError> {
+        let mut r = Reader::new(scene, Kind::Surface);
+        let contact = r.contact(registry)?;
+        let roughness = r.roughness()?;
+        let lim = 20.0 * roughness.sigma_s;
+        let mut ends = [None, None];
+        for (i, key) in ["d_start", "unload_from"].into_iter().enumerate() {
+            if let Some(d) = r.opt_number(key)? {
+                if d.abs() > lim {
+                    return Err(r
+                        .fail(
+                            key,
+                            format!("{} m", num(d)),
+                            format!(
+                                "finite and within 20 sigma_s = {} m of the mean plane",
+                                num(lim)
+                            ),
+                        )
+                        .into());
+                }
+                ends[i] = Some(d);
+            }
+        }
+        let common = r.common(2)?;
+        r.finish()?;
+        Ok(Self {
+            common: common.with_resolved(r.resolved),
+            contact,
+            roughness,
+            d_start: ends[0],
+            unload_from: ends[1],
+        })
+    }
+}
+
+impl SwitchSpec {
+    /// Validates a switch scene.
+    pub fn new(scene: &Scene, registry: &LawRegistry) -> Result<Self, ModelError> {
+        let mut r = Reader::new(scene, Kind::Switch);
+        let contact = r.contact(registry)?;
+        let roughness = r.roughness()?;
+        let switch = r.switch(contact.youngs_modulus)?;
+        let cycles = r.count("cycles")?;
+        let until_accommodated = r.flag("until_accommodated")?;
+        let accommodation_tolerance = r.number("accommodation_tolerance")?;
+        let elastic_comparison = r.flag("elastic_comparison")?;
+        let common = r.common(0)?;
+        // every cycle writes its curves and the whole result is held for rendering: bound
+        // it up front rather than fail on memory after the computation
+        let curve_points = common.points as f64 * cycles as f64;
+        if curve_points > MAX_CURVE_POINTS {
+            return Err(r
+                .fail(
+                    "points",
+                    common.points.to_string(),
+                    format!(
+                        "at most {} with cycles = {}: points x cycles = {} curve points exceeds {} (about 1 GB of output); lower points or cycles (points = 0 keeps the pull-out and writes no curves)",
+                        num((MAX_CURVE_POINTS / cycles as f64).floor()),
+                        cycles,
+                        num(curve_points),
+                        num(MAX_CURVE_POINTS)
+                    ),
+                )
+                .into());
+        }
+        r.finish()?;
+        Ok(Self {
+            common: common.with_resolved(r.resolved),
+            contact,
+            roughness,
+            switch,
+            cycles,
+            until_accommodated,
+            accommodation_tolerance,
+            elastic_comparison,
+        })
+    }
+}
+
+impl Common {
+    fn with_resolved(mut self, resolved: toml::Table) -> Self {
+        self.resolved = resolved;
+        self
+    }
+}
+
+/// Reads a scene's keys against the registries, recording the value each resolved to.
+struct Reader<'a> {
+    scene: &'a Scene,
+    kind: Kind,
+    used: BTreeSet<String>,
+    resolved: toml::Table,
+}
+
+fn as_number(v: &toml::Value) -> Option<f64> {
+    match v {
+        toml::Value::Float(f) => Some(*f),
+        toml::Value::Integer(i) => Some(*i as f64),
+        toml::Value::String(s) if s == "inf" => Some(f64::INFINITY),
+        _ => None,
+    }
+}
+
+/// A value as messages show it: numbers in scientific notation, strings quoted, long
+/// values cut.
+fn show(v: &toml::Value) -> String {
+    let s = match v {
+        toml::Value::Float(f) => num(*f),
+        toml::Value::Integer(i) => i.to_string(),
+        other => other.to_string(),
+    };
+    if s.len() > 80 {
+        let cut: String = s.chars().take(60).collect();
+        format!("{cut}... ({} characters)", s.len())
+    } else {
+        s
+    }
+}
+
+impl<'a> Reader<'a> {
+    fn new(scene: &'a Scene, kind: Kind) -> Self {
+        Self {
+            scene,
+            kind,
+            used: BTreeSet::new(),
+            resolved: toml::Table::new(),
+        }
+    }
+
+    fn file(&self) -> String {
+        self.scene.file().to_string()
+    }
+
+    fn line(&self, key: &str) -> String {
+        self.scene
+            .line_of(key)
+            .map_or(String::new(), |l| format!(" (line {l})"))
+    }
+
+    fn fail(&self, key: &str, value: impl Into<String>, allowed: impl Into<String>) -> SceneError {
+        SceneError::Field {
+            file: self.file(),
+            key: key.to_string(),
+            value: value.into(),
+            line: self.line(key),
+            allowed: allowed.into(),
+        }
+    }
+
+    fn missing(&self, key: &str) -> SceneError {
+        let k = keys::key(key);
+        SceneError::Missing {
+            file: self.file(),
+            key: key.into(),
+            explanation: match k {
+                Some(k) if k.unit.is_empty() || k.unit == "-" => {
+                    format!("required: {}", k.help)
+                }
+                Some(k) => format!("required: {} ({})", k.help, k.unit),
+                None => "required".into(),
+            },
+        }
+    }
+
+    fn registry_key(&self, key: &str) -> &'static Key {
+        keys::key(key)
+            .filter(|k| k.in_kind(self.kind))
+            .unwrap_or_else(|| panic!("{key} is not a key of a {} scene", self.kind))
+    }
+
+    /// The value of `key`, marking it read.
+    fn take(&mut self, key: &str) -> Option<toml::Value> {
+        self.used.insert(key.to_string());
+        self.scene.get(key).cloned()
+    }
+
+    /// Records the value `key` resolved to.
+    fn record(&mut self, key: &str, v: toml::Value) {
+        let parts: Vec<&str> = key.split('.').collect();
+        let mut node = &mut self.resolved;
+        for part in &parts[..parts.len() - 1] {
+            let e = node
+                .entry(part.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            node = match e {
+                toml::Value::Table(t) => t,
+                _ => return,
+            };
+        }
+        node.insert(parts[parts.len() - 1].to_string(), v);
+    }
+
+    /// A number of the registry: given, or its default; in its domain.
+    fn number(&mut self, key: &str) -> Result<f64, SceneError> {
+        match self.opt_number(key)? {
+            Some(v) => Ok(v),
+            None => Err(self.missing(key)),
+        }
+    }
+
+    /// A number that may be absent (None when absent without a default).
+    fn opt_number(&mut self, key: &str) -> Result<Option<f64>, SceneError> {
+        let k = self.registry_key(key);
+        let v = match self.take(key) {
+            Some(v) => match as_number(&v) {
+                Some(x) => x,
+                None => {
+                    return Err(self.fail(
+                        key,
+                        show(&v),
+                        format!("a number, {}", k.domain.describe()),
+                    ))
+                }
+            },
+            None => match k.default {
+                Default::Number(x) => x,
+                Default::Key(other) => match self.scene.get(other).and_then(as_number) {
+                    Some(x) => x,
+                    None => return Ok(None),
+                },
+                _ => return Ok(None),
+            },
+        };
+        if !k.domain.contains(v) {
+            return Err(self.fail(key, num(v), k.domain.describe()));
+        }
+        self.record(key, toml::Value::Float(v));
+        Ok(Some(v))
+    }
+
+    /// A count of the registry.
+    fn count(&mut self, key: &str) -> Result<usize, SceneError> {
+        let k = self.registry_key(key);
+        let v = match self.take(key) {
+            Some(toml::Value::Integer(i)) => i as f64,
+            Some(v) => return Err(self.fail(key, show(&v), k.domain.describe())),
+            None => match k.default {
+                Default::Count(n) => n as f64,
+                _ => return Err(self.missing(key)),
+            },
+        };
+        if !k.domain.contains(v) {
+            return Err(self.fail(key, format!("{v}"), k.domain.describe()));
+        }
+        self.record(key, toml::Value::Integer(v as i64));
+        Ok(v as usize)
+    }
+
+    /// A flag of the registry.
+    fn flag(&mut self, key: &str) -> Result<bool, SceneError> {
+        let k = self.registry_key(key);
+        let b = match self.take(key) {
+            Some(toml::Value::Boolean(b)) => b,
+            Some(v) => return Err(self.fail(key, show(&v), "true or false")),
+            None => match k.default {
+                Default::Flag(b) => b,
+                _ => return Err(self.missing(key)),
+            },
+        };
+        self.record(key, toml::Value::Boolean(b));
+        Ok(b)
+    }
+
+    /// A word of the registry: one of its choices (or a law name, checked by the caller).
+    fn word(&mut self, key: &str) -> Result<Option<String>, SceneError> {
+        let k = self.registry_key(key);
+        let w = match self.take(key) {
+            Some(toml::Value::String(s)) => s,
+            Some(v) => return Err(self.fail(key, show(&v), k.domain.describe())),
+            None => match k.default {
+                Default::Word(w) => w.to_string(),
+                _ => return Ok(None),
+            },
+        };
+        if let Domain::Choice(words) = k.domain {
+            if !words.contains(&w.as_str()) {
+                return Err(self.fail(key, format!("\"{w}\""), k.domain.describe()));
+            }
+        }
+        self.record(key, toml::Value::String(w.clone()));
+        Ok(Some(w))
+    }
+
+    fn required_word(&mut self, key: &str) -> Result<String, SceneError> {
+        match self.word(key)? {
+            Some(w) => Ok(w),
+            None => Err(self.missing(key)),
+        }
+    }
+
+    /// The title, accuracy and points (at least `min_points` when not zero).
+    fn common(&mut self, min_points: usize) -> Result<Common, SceneError> {
+        let title = match self.take("title") {
+            Some(toml::Value::String(s)) => Some(s),
+            Some(v) => return Err(self.fail("title", show(&v), "text")),
+            None => None,
+        };
+        if let Some(t) = &title {
+            self.record("title", toml::Value::String(t.clone()));
+        }
+        if let Some(v) = self.take("kind") {
+            if v.as_str() != Some(self.kind.as_str()) {
+                return Err(self.fail(
+                    "kind",
+                    show(&v),
+                    format!("\"{}\" for this command", self.kind),
+                ));
+            }
+        }
+        self.record("kind", toml::Value::String(self.kind.as_str().into()));
+        let accuracy = self.required_word("accuracy")?;
+        let accuracy = Accuracy::from_name(&accuracy).expect("a registry choice");
+        let points = self.count("points")?;
+        if min_points > 0 && points < min_points {
+            return Err(self.fail(
+                "points",
+                points.to_string(),
+                format!("at least {min_points} for the {} curves", self.kind),
+            ));
+        }
+        Ok(Common {
+            scene: self.scene.clone(),
+            title: title.unwrap_or_else(|| self.scene.file().to_string()),
+            accuracy,
+            points,
+            resolved: toml::Table::new(),
+        })
+    }
+
+    fn roughness(&mut self) -> Result<RoughnessSpec, SceneError> {
+        Ok(RoughnessSpec {
+            sigma_s: self.number("surface.sigma_s")?,
+            asperity_density: self.number("surface.asperity_density")?,
+        })
+    }
+
+    fn switch(&mut self, film_modulus: f64) -> Result<SwitchGeometrySpec, SceneError> {
+        let d0 = self.number("switch.d0")?;
+        let t_d = self.number("switch.t_d")?;
+        let epsilon_r = self.number("switch.epsilon_r")?;
+        let epsilon_0 = self.number("switch.epsilon_0")?;
+        let film_thickness = self.number("switch.film_thickness")?;
+        let film_youngs_modulus = self
+            .opt_number("switch.film_youngs_modulus")?
+            .unwrap_or(film_modulus);
+        let contact_area_fraction = self.number("switch.contact_area_fraction")?;
+        let energy = self.opt_number("switch.impact_energy")?;
+        let k_s = self.opt_number("switch.k_s")?;
+        let voltage = self.opt_number("switch.voltage")?;
+        let drive = match (energy, k_s) {
+            (Some(e), None) => {
+                if let Some(v) = voltage {
+                    return Err(self.fail(
+                        "switch.voltage",
+                        num(v),
+                        "absent when impact_energy is given (K_s is derived at U = V_PI; give k_s and voltage instead of impact_energy to set the voltage)",
+                    ));
+                }
+                Drive::ImpactEnergy(e)
+            }
+            (None, Some(k)) => Drive::Spring { k_s: k, voltage },
+            (Some(e), Some(_)) => {
+                return Err(self.fail(
+                    "switch.impact_energy",
+                    num(e),
+                    "given alone (K_s derived at U = V_PI), or replaced by k_s with an optional voltage (E_I derived), not both",
+                ))
+            }
+            (None, None) => {
+                return Err(SceneError::Missing {
+                    file: self.file(),
+                    key: "switch.impact_energy".into(),
+                    explanation: "give impact_energy (J/m^2; K_s is derived so that release at U = V_PI gives it), or k_s (Pa/m) with an optional voltage (V, default V_PI; E_I is derived)".into(),
+                })
+            }
+        };
+        Ok(SwitchGeometrySpec {
+            d0,
+            t_d,
+            epsilon_r,
+            epsilon_0,
+            film_thickness,
+            film_youngs_modulus,
+            drive,
+            contact_area_fraction,
+        })
+    }
+
+    fn contact(&mut self, registry: &LawRegistry) -> Result<ContactSpec, ModelError> {
+        let youngs_modulus = self.number("contact.youngs_modulus")?;
+        let poisson_ratio = self.number("contact.poisson_ratio")?;
+        let yield_stress = self.number("contact.yield_stress")?;
+        let radius = self.number("contact.radius")?;
+        let work_of_adhesion = self.number("contact.work_of_adhesion")?;
+        let z0 = self.number("contact.z0")?;
+        let counter = match self.required_word("contact.counter")?.as_str() {
+            "material" => {
+                let mut given = [0.0; 2];
+                for (i, key) in [
+                    "contact.counter_youngs_modulus",
+                    "contact.counter_poisson_ratio",
+                ]
+                .into_iter()
+                .enumerate()
+                {
+                    given[i] = match self.opt_number(key)? {
+                        Some(v) => v,
+                        None => {
+                            return Err(self
+                                .fail(key, "missing", "given when counter = \"material\"")
+                                .into())
+                        }
+                    };
+                }
+                Counter::Material {
+                    youngs_modulus: given[0],
+                    poisson_ratio: given[1],
+                    yield_stress: self.number("contact.counter_yield_stress")?,
+                }
+            }
+            word => {
+                for key in [
+                    "contact.counter_youngs_modulus",
+                    "contact.counter_poisson_ratio",
+                    "contact.counter_yield_stress",
+                ] {
+                    if let Some(v) = self.take(key) {
+                        return Err(self
+                            .fail(key, show(&v), "absent unless counter = \"material\"")
+                            .into());
+                    }
+                }
+                if word == "rigid" {
+                    Counter::Rigid
+                } else {
+                    Counter::Same
+                }
+            }
+        };
+        let yield_modulus = match self.word("contact.yield_modulus")?.as_deref() {
+            Some("composite") => YieldModulus::Composite,
+            Some(_) => YieldModulus::AsPrinted,
+            None => {
+                return Err(SceneError::Missing {
+                    file: self.file(),
+                    key: "contact.yield_modulus".into(),
+                    explanation: "the modulus of the yield onset, eq 1, moves the paper switch's pull-out by about 100x, so a scene must say which it uses: \"as_printed\" (E of the film, as the paper prints eq 1; its scenes use this and it reproduces Fig 4's changing curves) or \"composite\" (E* of the pair, the Kogut-Etsion convention that makes eq 3 the Hertz force at delta_CP); see docs/theory.md section 2.1".into(),
+                }
+                .into())
+            }
+        };
+        let reload = match self.required_word("contact.reload")?.as_str() {
+            "bounded" => Reload::Bounded,
+            _ => Reload::AsPrinted,
+        };
+        let film = Material::new(MaterialProps {
+            youngs_modulus,
+            poisson_ratio,
+            yield_stress,
+        })?;
+        let pair = laws::pair_of(film, &counter, radius)?;
+        // the adhesion law
+        let name = self.required_word("contact.adhesion_law")?;
+        let entry = registry.adhesion(&name).ok_or_else(|| {
+            self.fail(
+                "contact.adhesion_law",
+                format!("\"{name}\""),
+                format!(
+                    "one of the registered adhesion laws: {}",
+                    registry.adhesion_names().join(", ")
+                ),
+            )
+        })?;
+        let params = self.law_params("contact.adhesion", None, &name, entry.params())?;
+        let law = entry
+            .build(&LawContext {
+                pair: &pair,
+                work_of_adhesion,
+                z0,
+                yield_modulus,
+                params: &params,
+            })
+            .map_err(|e| self.law_error("contact.adhesion", "contact.adhesion_law", &name, e))?;
+        let adhesion = Chosen { name, params, law };
+        // the plasticity law
+        let name = self.required_word("contact.plasticity_law")?;
+        let entry = registry.plasticity(&name).ok_or_else(|| {
+            self.fail(
+                "contact.plasticity_law",
+                format!("\"{name}\""),
+                format!(
+                    "one of the registered plasticity laws: {}",
+                    registry.plasticity_names().join(", ")
+                ),
+            )
+        })?;
+        let table = if self.scene.get("contact.effective_radius").is_some() {
+            if self.scene.get("contact.plasticity").is_some() {
+                return Err(self
+                    .fail(
+                        "contact.effective_radius",
+                        "a table",
+                        "absent when [contact.plasticity] is given (it is the paper's name for the same table)",
+                    )
+                    .into());
+            }
+            "contact.effective_radius"
+        } else {
+            "contact.plasticity"
+        };
+        let params = self.law_params(table, Some("contact.plasticity"), &name, entry.params())?;
+        let law = entry
+            .build(&LawContext {
+                pair: &pair,
+                work_of_adhesion,
+                z0,
+                yield_modulus,
+                params: &params,
+            })
+            .map_err(|e| match e {
+            contact_core::LawError::Law { ref source, .. }
+                if matches!(
+                    source.downcast_ref::<PlasticError>(),
+                    Some(PlasticError::NeverYields)
+                ) =>
+            {
+                self.fail(
+                    "contact.yield_stress",
+                    num(yield_stress),
+                    format!("finite with plasticity_law = \"{name}\" (use \"elastic\" for no yield)"),
+                )
+                .into()
+            }
+            e => self.law_error(table, "contact.plasticity_law", &name, e),
+        })?;
+        let plasticity = Chosen { name, params, law };
+        Ok(ContactSpec {
+            youngs_modulus,
+            poisson_ratio,
+            yield_stress,
+            radius,
+            work_of_adhesion,
+            z0,
+            counter,
+            yield_modulus,
+            reload,
+            adhesion,
+            plasticity,
+            pair,
+        })
+    }
+
+    /// The error of a law's constructor: a parameter it refuses (named by the law's own
+    /// field when it says which) is a scene error of its table; anything else names the
+    /// law.
+    fn law_error(
+        &self,
+        table: &str,
+        name_key: &str,
+        law: &str,
+        e: contact_core::LawError,
+    ) -> ModelError {
+        if let Some(PlasticError::Fit {
+            field,
+            value,
+            allowed,
+        }) = e.downcast_ref::<PlasticError>()
+        {
+            return self
+                .fail(&format!("{table}.{field}"), num(*value), *allowed)
+                .into();
+        }
+        if e.category() == Category::Input {
+            return self
+                .fail(
+                    name_key,
+                    format!("\"{law}\""),
+                    format!("a law its parameters allow: {e}"),
+                )
+                .into();
+        }
+        ModelError::Law(e)
+    }
+
+    /// The parameters of law `law` from table `table` (recorded under `echo_as`, default
+    /// `table`), each checked against the law's list.
+    fn law_params(
+        &mut self,
+        table: &str,
+        echo_as: Option<&str>,
+        law: &str,
+        params: &[Param],
+    ) -> Result<LawParams, SceneError> {
+        self.used.insert(table.to_string());
+        let given = match self.scene.get(table) {
+            None => toml::Table::new(),
+            Some(toml::Value::Table(t)) => t.clone(),
+            Some(v) => return Err(self.fail(table, show(v), "a table of the law's parameters")),
+        };
+        for name in given.keys() {
+            if !params.iter().any(|p| p.name == name) {
+                let known: Vec<&str> = params.iter().map(|p| p.name).collect();
+                return Err(SceneError::Unknown {
+                    file: self.file(),
+                    key: format!("{table}.{name}"),
+                    line: self.line(&format!("{table}.{name}")),
+                    kind: self.kind.to_string(),
+                    hint: if known.is_empty() {
+                        format!(": the law `{law}` takes no parameters")
+                    } else {
+                        format!(": the law `{law}` takes {}", known.join(", "))
+                    },
+                });
+            }
+        }
+        let mut values = std::collections::BTreeMap::new();
+        let mut echo = toml::Table::new();
+        for p in params {
+            let key = format!("{table}.{}", p.name);
+            let value = match given.get(p.name) {
+                Some(v) => self.param_value(&key, p, v)?,
+                None => match p.default {
+                    Default::Number(x) => ParamValue::Number(x),
+                    Default::Count(n) => ParamValue::Count(n),
+                    Default::Triple(t) => ParamValue::Triple(t),
+                    Default::Word(w) => ParamValue::Word(w.into()),
+                    Default::Flag(b) => ParamValue::Flag(b),
+                    Default::Required => {
+                        return Err(SceneError::Missing {
+                            file: self.file(),
+                            key,
+                            explanation: format!(
+                                "required by the law `{law}`: {} ({})",
+                                p.help, p.unit
+                            ),
+                        })
+                    }
+                    Default::Absent | Default::Key(_) => continue,
+                },
+            };
+            echo.insert(p.name.to_string(), param_to_toml(&value));
+            values.insert(p.name.to_string(), value);
+        }
+        if !echo.is_empty() {
+            self.record(echo_as.unwrap_or(table), toml::Value::Table(echo));
+        }
+        Ok(LawParams::from_values(values))
+    }
+
+    fn param_value(&self, key: &str, p: &Param, v: &toml::Value) -> Result<ParamValue, SceneError> {
+        let bad = || self.fail(key, show(v), p.domain.describe());
+        Ok(match p.domain {
+            Domain::Triple => match v {
+                toml::Value::Array(a) if a.len() == 3 => {
+                    let mut t = [0.0; 3];
+                    for (i, x) in a.iter().enumerate() {
+                        t[i] = as_number(x).filter(|x| x.is_finite()).ok_or_else(bad)?;
+                    }
+                    ParamValue::Triple(t)
+                }
+                _ => return Err(bad()),
+            },
+            Domain::Count { .. } => match v {
+                toml::Value::Integer(i) if p.domain.contains(*i as f64) => {
+                    ParamValue::Count(*i as usize)
+                }
+                _ => return Err(bad()),
+            },
+            Domain::Range { .. } | Domain::RangeOrInfinite { .. } => {
+                let x = as_number(v).ok_or_else(bad)?;
+                if !p.domain.contains(x) {
+                    return Err(self.fail(key, num(x), p.domain.describe()));
+                }
+                ParamValue::Number(x)
+            }
+            Domain::Choice(words) => match v {
+                toml::Value::String(s) if words.contains(&s.as_str()) => {
+                    ParamValue::Word(s.clone())
+                }
+                _ => return Err(bad()),
+            },
+            Domain::Flag => match v {
+                toml::Value::Boolean(b) => ParamValue::Flag(*b),
+                _ => return Err(bad()),
+            },
+            _ => return Err(bad()),
+        })
+    }
+
+    /// Refuses any key of the scene that this kind does not take.
+    fn finish(&self) -> Result<(), SceneError> {
+        self.check_table(self.scene.tree(), "")
+    }
+
+    fn check_table(&self, t: &toml::Table, prefix: &str) -> Result<(), SceneError> {
+        for (k, v) in t {
+            let key = if prefix.is_empty() {
+                k.clone()
+            } else {
+                format!("{prefix}.{k}")
+            };
+            if self.used.contains(&key) {
+                continue;
+            }
+            let is_section =
+                v.is_table() && keys::of(self.kind).any(|f| f.key.starts_with(&format!("{key}.")));
+            if is_section {
+                self.check_table(v.as_table().expect("a table"), &key)?;
+                continue;
+            }
+            let known: Vec<&str> = keys::of(self.kind).map(|f| f.key).collect();
+            let close = known
+                .iter()
+                .map(|c| (strsim::jaro_winkler(c, &key), *c))
+                .filter(|(s, _)| *s > 0.85)
+                .max_by(|a, b| a.0.total_cmp(&b.0));
+            let hint = match close {
+                Some((_, c)) => format!(": did you mean `{c}`?"),
+                None => {
+                    let in_section: Vec<&str> = known
+                        .iter()
+                        .filter(|c| {
+                            c.rsplit_once('.')
+                                .map_or(prefix.is_empty(), |(s, _)| s == prefix)
+                        })
+                        .copied()
+                        .collect();
+                    format!(
+                        " (the keys {}: {})",
+                        if prefix.is_empty() {
+                            "at the top".to_string()
+                        } else {
+                            format!("of [{prefix}]")
+                        },
+                        in_section.join(", ")
+                    )
+                }
+            };
+            return Err(SceneError::Unknown {
+                file: self.file(),
+                key: key.clone(),
+                line: self.line(&key),
+                kind: self.kind.to_string(),
+                hint,
+            });
+        }
+        Ok(())
+    }
+}
+
+fn param_to_toml(v: &ParamValue) -> toml::Value {
+    match v {
+        ParamValue::Number(x) => toml::Value::Float(*x),
+        ParamValue::Count(n) => toml::Value::Integer(*n as i64),
+        ParamValue::Triple(t) => {
+            toml::Value::Array(t.iter().map(|&x| toml::Value::Float(x)).collect())
+        }
+        ParamValue::Word(w) => toml::Value::String(w.clone()),
+        ParamValue::Flag(b) => toml::Value::Boolean(*b),
+    }
+}
+
+/// A TOML value as JSON: non-finite numbers as their names (`"inf"`), never null.
+pub fn toml_to_json(v: &toml::Value) -> serde_json::Value {
+    use serde_json::Value as J;
+    match v {
+        toml::Value::String(s) => J::String(s.clone()),
+        toml::Value::Integer(i) => J::from(*i),
+        toml::Value::Float(f) => {
+            if f.is_finite() {
+                J::from(*f)
+            } else {
+                J::String(num(*f))
+            }
+        }
+        toml::Value::Boolean(b) => J::Bool(*b),
+        toml::Value::Datetime(d) => J::String(d.to_string()),
+        toml::Value::Array(a) => J::Array(a.iter().map(toml_to_json).collect()),
+        toml::Value::Table(t) => J::Object(
+            t.iter()
+                .map(|(k, v)| (k.clone(), toml_to_json(v)))
+                .collect(),
+        ),
+    }
+}
