@@ -294,7 +294,14 @@ impl Command for Job<'_> {
             select: self.cmd.fit,
             ..FitOptions::default()
         };
-        let fit = cal.fit(&self.data, &options)?;
+        // a data error found by the fit (forces off the model's scale) names the CSV file
+        let fit = cal.fit(&self.data, &options).map_err(|e| match e {
+            e @ CalibError::Data { .. } => Error::InScene {
+                file: self.cmd.fe.display().to_string(),
+                source: Box::new(Error::Calibrate(e)),
+            },
+            e => e.into(),
+        })?;
         let fitted = fit.fit();
         let model_forces = cal.predict(fitted, &self.data)?;
         let points = self
