@@ -86,7 +86,7 @@ fn check_force_scale(data: &FeData, points: &[Point], model: &[f64]) -> Result<(
         };
         let ratio = peak.force.abs() / model_peak;
         // a model without force on the curve gives no scale to compare with
-        if model_peak > 0.0 && !(ratio <= FORCE_SCALE_LIMIT && ratio >= 1.0 / FORCE_SCALE_LIMIT) {
+        if model_peak > 0.0 && !(1.0 / FORCE_SCALE_LIMIT..=FORCE_SCALE_LIMIT).contains(&ratio) {
             return Err(CalibError::Data {
                 line: peak.line,
                 column: crate::data::COLUMNS[2].to_string(),
