@@ -285,17 +285,10 @@ impl MergeCommand {
                 ));
             }
             let path = dir.join("map.json");
-            let text = std::fs::read_to_string(&path).map_err(|e| {
-                Error::usage(
-                    "DIR",
-                    format!(
-                        "cannot read {}: {e} (a folder of `design map --shard K/N`)",
-                        path.display()
-                    ),
-                )
+            // bounded read (design_sweep::MAX_MAP_BYTES), regular files only
+            let map = Map::read_path(&path).map_err(|e| {
+                Error::usage("DIR", format!("{e} (a folder of `design map --shard K/N`)"))
             })?;
-            let map = Map::from_json(&text)
-                .map_err(|e| Error::usage("DIR", format!("{}: {e}", path.display())))?;
             parts.push((label, map));
         }
         preflight(Some(&self.out), MAP_FILES, None)?;

@@ -99,6 +99,7 @@ pub enum CalibError {
 
 /// What is wrong with a line of finite-element data.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum DataProblem {
     /// The file has no header line.
     NoHeader,
@@ -156,6 +157,19 @@ pub enum DataProblem {
         /// The curve's branch.
         branch: Branch,
     },
+    /// A curve whose peak force differs from the model's on the same curve (at the
+    /// starting constants) by more than [`crate::FORCE_SCALE_LIMIT`]: forces in other
+    /// units, or curves of another asperity than the scene's.
+    ForceScale {
+        /// The curve's peak |force| (N), the value on this line.
+        force: f64,
+        /// The curve's delta_max (m).
+        delta_max: f64,
+        /// The curve's branch.
+        branch: Branch,
+        /// The model's peak |force| on the curve's points (N).
+        model_peak: f64,
+    },
 }
 
 impl fmt::Display for DataProblem {
@@ -194,6 +208,21 @@ impl fmt::Display for DataProblem {
             DataProblem::ZeroPeakForce { delta_max, branch } => write!(
                 f,
                 "the {branch} curve with delta_max {delta_max:e} m has only zero forces"
+            ),
+            DataProblem::ForceScale {
+                force,
+                delta_max,
+                branch,
+                model_peak,
+            } => write!(
+                f,
+                "force {force:e} N, the peak of the {branch} curve with delta_max {delta_max:e} m, \
+                 is {:.1e} times the scene's asperity model there ({model_peak:e} N at the \
+                 starting constants); eq 13's constants cannot bridge more than a factor \
+                 {:e}: are the forces in N, and are material, radius and adhesion those of \
+                 the FE runs?",
+                force / model_peak,
+                crate::FORCE_SCALE_LIMIT
             ),
         }
     }

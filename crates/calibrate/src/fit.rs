@@ -4,7 +4,7 @@
 
 use crate::constants::{from_array, to_array, Constant, Selection};
 use crate::data::FeData;
-use crate::error::CalibError;
+use crate::error::{CalibError, DataProblem};
 use crate::model::{flatten, Calibrator, Evaluator, Point};
 use crate::report::{
     scene_fragment, Correlation, CurveReport, Direction, DirectionComponent, FitReport,
@@ -60,6 +60,56 @@ pub const NULL_WEIGHT: f64 = 1e-6;
 
 /// Smallest b2 a step may reach (eq 13 needs b2 > 0).
 pub const B2_MIN: f64 = 1e-6;
+
+/// Largest ratio (either way) between a curve's peak data force and the model's peak force
+/// on the same points at the starting constants. A loading curve does not depend on the
+/// constants at all and an unloading curve starts from the loading force at delta_max, so
+/// data further off than this are in other units or of another asperity: refused, naming
+/// the line of the curve's peak (rather than fitted into a meaningless, overflowing report).
+pub const FORCE_SCALE_LIMIT: f64 = 1e6;
+
+/// Refuses data whose force scale is not the model's (see [`FORCE_SCALE_LIMIT`]);
+/// `model` is the model's force at each of `points`.
+fn check_force_scale(data: &FeData, points: &[Point], model: &[f64]) -> Result<(), CalibError> {
+    for (k, c) in data.curves().iter().enumerate() {
+        let model_peak = points
+            .iter()
+            .zip(model)
+            .filter(|(p, _)| p.curve == k)
+            .fold(0.0f64, |m, (_, f)| m.max(f.abs()));
+        let Some(peak) = c
+            .points
+            .iter()
+            .max_by(|a, b| a.force.abs().total_cmp(&b.force.abs()))
+        else {
+            continue;
+        };
+        let ratio = peak.force.abs() / model_peak;
+        // a model without force on the curve gives no scale to compare with
+        if model_peak > 0.0 && !(1.0 / FORCE_SCALE_LIMIT..=FORCE_SCALE_LIMIT).contains(&ratio) {
+            return Err(CalibError::Data {
+                line: peak.line,
+                column: crate::data::COLUMNS[2].to_string(),
+                problem: DataProblem::ForceScale {
+                    force: peak.force,
+                    delta_max: c.delta_max,
+                    branch: c.branch,
+                    model_peak,
+                },
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Euclidean norm without overflow or underflow of the squares.
+fn norm(v: impl Iterator<Item = f64> + Clone) -> f64 {
+    let m = v.clone().fold(0.0f64, |m, x| m.max(x.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * v.map(|x| (x / m).powi(2)).sum::<f64>().sqrt()
+}
 
 /// Initial damping, relative to the largest squared singular value.
 const MU0: f64 = 1e-3;
@@ -153,9 +203,7 @@ struct Scaled {
 impl Scaled {
     fn new(jac: &Mat<f64>, tol: f64) -> Result<Self, CalibError> {
         let (n, p) = (jac.nrows(), jac.ncols());
-        let d: Vec<f64> = (0..p)
-            .map(|j| (0..n).map(|i| jac[(i, j)].powi(2)).sum::<f64>().sqrt())
-            .collect();
+        let d: Vec<f64> = (0..p).map(|j| norm((0..n).map(|i| jac[(i, j)]))).collect();
         let nz: Vec<usize> = (0..p).filter(|&j| d[j] > 0.0 && d[j].is_finite()).collect();
         let js = Mat::<f64>::from_fn(n, nz.len(), |i, k| jac[(i, nz[k])] / d[nz[k]]);
         let (s, u, v) = if nz.is_empty() {
@@ -435,6 +483,7 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
         let p = free.len();
         let mut theta = to_array(&start);
         let (mut r, mut f) = pb.residuals(&theta).map_err(at_start)?;
+        check_force_scale(data, &points, &f)?;
         let mut jac = pb.jacobian(&theta, &f).map_err(at_start)?;
         let mut cost = 0.5 * dot(&r, &r);
         let start_cost = cost;
@@ -666,19 +715,25 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
                 .collect();
         }
 
+        // sums of squares scaled by the data's peak forces: no overflow or underflow of
+        // the squares, whatever the unit of the forces
+        let scale = data
+            .curves()
+            .iter()
+            .fold(0.0f64, |m, c| m.max(c.peak_force()));
         let mut curves = Vec::new();
         let mut sum_sq = 0.0;
         for (k, c) in data.curves().iter().enumerate() {
+            let peak = c.peak_force();
             let (mut ss, mut cnt) = (0.0, 0usize);
             for (pt, fm) in points.iter().zip(forces) {
                 if pt.curve == k {
-                    ss += (fm - pt.force).powi(2);
+                    ss += ((fm - pt.force) / peak).powi(2);
+                    sum_sq += ((fm - pt.force) / scale).powi(2);
                     cnt += 1;
                 }
             }
-            sum_sq += ss;
-            let rms = (ss / cnt.max(1) as f64).sqrt();
-            let peak = c.peak_force();
+            let rms = peak * (ss / cnt.max(1) as f64).sqrt();
             curves.push(CurveReport {
                 delta_max_m: c.delta_max,
                 omega: self.omega(c),
@@ -698,7 +753,7 @@ impl<A: AdhesionLaw + Clone> Calibrator<A> {
             fitted: free.to_vec(),
             standard_errors,
             correlation,
-            residual_rms_n: (sum_sq / n as f64).sqrt(),
+            residual_rms_n: scale * (sum_sq / n as f64).sqrt(),
             start_cost,
             cost,
             iterations,

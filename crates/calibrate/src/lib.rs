@@ -62,7 +62,7 @@ mod synthetic;
 pub use constants::{Constant, Selection};
 pub use data::{Branch, Curve, CurvePoint, FeData, COLUMNS, DELTA_MAX_TOLERANCE};
 pub use error::{CalibError, DataProblem};
-pub use fit::{FitOptions, B2_MIN, NULL_WEIGHT};
+pub use fit::{FitOptions, B2_MIN, FORCE_SCALE_LIMIT, NULL_WEIGHT};
 pub use model::{Calibrator, OverlayCurve, FD_STEP};
 pub use report::{
     scene_fragment, Correlation, CurveReport, Direction, DirectionComponent, FitReport,

@@ -409,6 +409,35 @@ fn the_c_program_reports_a_corrupted_law_file_by_its_json_path() {
     );
 }
 
+#[test]
+fn the_c_program_refuses_a_law_file_with_a_duplicated_key() {
+    let (file, _) = law_file();
+    let exe = compile_driver();
+    let text = std::fs::read_to_string(file).unwrap();
+    let bad = tmp().join("duplicated-version.json");
+    let dup = text.replacen("\"version\": 1,", "\"version\": 1,\n  \"version\": 2,", 1);
+    assert_ne!(dup, text);
+    std::fs::write(&bad, dup).unwrap();
+    let out = Command::new(&exe)
+        .arg(&bad)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains(&format!("load {SCL_ERR_FORMAT}")),
+        "{stdout}"
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("version") && stderr.contains("duplicated key"),
+        "{stderr}"
+    );
+}
+
 /// Function names declared in the header and exported by the library are the same set.
 #[test]
 fn the_header_declares_exactly_the_exported_functions() {

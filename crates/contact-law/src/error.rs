@@ -2,6 +2,7 @@ use thiserror::Error;
 
 /// Errors of the `contact-law` crate: reading, validating, evaluating and tabulating a law.
 #[derive(Debug, Error)]
+#[non_exhaustive]
 pub enum LawError {
     /// A file could not be read or written.
     #[error("{path}: {source}")]

@@ -5,7 +5,10 @@
 
 use crate::error::{fmt_num, LawError};
 use crate::law::{BranchSet, ContactLaw, Curve, Meta, Point};
-use crate::meta::{ErrorStats, MeasuredError, PartialReloadError, TabulationInfo};
+use crate::meta::{
+    from_non_finite_word, non_finite_word, ErrorStats, MeasuredError, PartialReloadError,
+    TabulationInfo,
+};
 use serde_json::{Map, Value};
 use std::io::{Read, Write};
 use std::path::Path as FsPath;
@@ -232,12 +235,57 @@ pub(crate) fn check_no_null(v: &Value, path: &str) -> Result<(), LawError> {
     }
 }
 
+/// A measured error: a number >= 0, or the string `"inf"` or `"nan"` (what the writer
+/// puts for an infinite or undefined error).
+fn error_value(o: &Obj<'_>, key: &str) -> Result<f64, LawError> {
+    let path = join(&o.path, key);
+    let v = match o.get(key)? {
+        Value::String(w) => match from_non_finite_word(w) {
+            Some(v) if !(v < 0.0) => v,
+            _ => {
+                return Err(LawError::format(
+                    path,
+                    format!(
+                        "{}: expected a number >= 0, \"inf\" or \"nan\"",
+                        describe(o.get(key)?)
+                    ),
+                ))
+            }
+        },
+        v => as_num(v, &path)?,
+    };
+    if v < 0.0 {
+        return Err(LawError::format(
+            path,
+            format!("{}: a relative error is >= 0", fmt_num(v)),
+        ));
+    }
+    Ok(v)
+}
+
 fn read_stats(o: &Obj<'_>) -> Result<ErrorStats, LawError> {
     let worst = o.sub("worst")?;
     let samples = o.uint("samples")?;
+    let (max, p99) = (error_value(o, "max")?, error_value(o, "p99")?);
+    if p99 > max {
+        return Err(LawError::format(
+            join(&o.path, "p99"),
+            format!(
+                "{}: the 99th percentile cannot exceed the maximum {}",
+                fmt_num(p99),
+                fmt_num(max)
+            ),
+        ));
+    }
+    if samples == 0 {
+        return Err(LawError::format(
+            join(&o.path, "samples"),
+            "0: statistics need at least one sample",
+        ));
+    }
     Ok(ErrorStats {
-        max: o.num("max")?,
-        p99: o.num("p99")?,
+        max,
+        p99,
         samples: usize::try_from(samples).map_err(|_| {
             LawError::format(join(&o.path, "samples"), format!("{samples}: too large"))
         })?,
@@ -275,8 +323,7 @@ fn read_curve(
 impl ContactLaw {
     /// Reads and validates a law from JSON text.
     pub fn from_json_str(text: &str) -> Result<ContactLaw, LawError> {
-        let root: Value = serde_json::from_str(text).map_err(|e| LawError::Json(e.to_string()))?;
-        from_value(&root)
+        from_value(&parse_strict(text)?)
     }
 
     /// Reads and validates `law.json` (at most [`MAX_FILE_BYTES`]).
@@ -308,6 +355,128 @@ impl ContactLaw {
             LawError::Json(m) => LawError::Json(format!("{shown}: {m}")),
             other => other,
         })
+    }
+}
+
+/// Where a value sits in the JSON tree while it is parsed: rendered as a JSON path
+/// (`branches[3].retract`) only for an error.
+#[derive(Clone, Copy)]
+enum At<'a> {
+    Root,
+    Key(&'a At<'a>, &'a str),
+    Index(&'a At<'a>, usize),
+}
+
+impl At<'_> {
+    fn render(&self) -> String {
+        match self {
+            At::Root => String::new(),
+            At::Key(parent, k) => join(&parent.render(), k),
+            At::Index(parent, i) => format!("{}[{i}]", parent.render()),
+        }
+    }
+}
+
+/// Parses JSON text into a tree like `serde_json::from_str::<Value>`, but refuses an
+/// object that repeats a key (serde_json keeps the last one silently: a file with two
+/// `version`s, or two `pull_out`s, would be read as one of them without a word).
+fn parse_strict(text: &str) -> Result<Value, LawError> {
+    use serde::de::DeserializeSeed;
+    let duplicate = std::cell::RefCell::new(None);
+    let mut de = serde_json::Deserializer::from_str(text);
+    let parsed = Strict {
+        at: At::Root,
+        duplicate: &duplicate,
+    }
+    .deserialize(&mut de)
+    .and_then(|v| de.end().map(|()| v));
+    match parsed {
+        Ok(v) => Ok(v),
+        Err(e) => match duplicate.into_inner() {
+            Some(path) => Err(LawError::format(
+                path,
+                format!(
+                    "duplicated key (line {}): each key may appear once in an object",
+                    e.line()
+                ),
+            )),
+            None => Err(LawError::Json(e.to_string())),
+        },
+    }
+}
+
+/// The seed of [`parse_strict`]: a JSON value at `at`; the path of a duplicated key is
+/// left in `duplicate`.
+struct Strict<'a> {
+    at: At<'a>,
+    duplicate: &'a std::cell::RefCell<Option<String>>,
+}
+
+impl<'de> serde::de::DeserializeSeed<'de> for Strict<'_> {
+    type Value = Value;
+    fn deserialize<D: serde::Deserializer<'de>>(self, d: D) -> Result<Value, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<'de> serde::de::Visitor<'de> for Strict<'_> {
+    type Value = Value;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a JSON value")
+    }
+    fn visit_bool<E>(self, v: bool) -> Result<Value, E> {
+        Ok(Value::Bool(v))
+    }
+    fn visit_i64<E>(self, v: i64) -> Result<Value, E> {
+        Ok(Value::Number(v.into()))
+    }
+    fn visit_u64<E>(self, v: u64) -> Result<Value, E> {
+        Ok(Value::Number(v.into()))
+    }
+    fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Value, E> {
+        serde_json::Number::from_f64(v)
+            .map(Value::Number)
+            .ok_or_else(|| E::custom(format!("{}: number out of range", self.at.render())))
+    }
+    fn visit_str<E>(self, v: &str) -> Result<Value, E> {
+        Ok(Value::String(v.to_owned()))
+    }
+    fn visit_string<E>(self, v: String) -> Result<Value, E> {
+        Ok(Value::String(v))
+    }
+    fn visit_unit<E>(self) -> Result<Value, E> {
+        Ok(Value::Null)
+    }
+    fn visit_none<E>(self) -> Result<Value, E> {
+        Ok(Value::Null)
+    }
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Value, A::Error> {
+        let mut out = Vec::new();
+        while let Some(v) = seq.next_element_seed(Strict {
+            at: At::Index(&self.at, out.len()),
+            duplicate: self.duplicate,
+        })? {
+            out.push(v);
+        }
+        Ok(Value::Array(out))
+    }
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Value, A::Error> {
+        let mut out = Map::new();
+        while let Some(key) = map.next_key::<String>()? {
+            if out.contains_key(&key) {
+                let path = At::Key(&self.at, &key).render();
+                let message = format!("{path}: duplicated key");
+                *self.duplicate.borrow_mut() = Some(path);
+                return Err(serde::de::Error::custom(message));
+            }
+            let v = map.next_value_seed(Strict {
+                at: At::Key(&self.at, &key),
+                duplicate: self.duplicate,
+            })?;
+            out.insert(key, v);
+        }
+        Ok(Value::Object(out))
     }
 }
 
@@ -415,6 +584,18 @@ fn from_value(root: &Value) -> Result<ContactLaw, LawError> {
             })
         }
     };
+    if let (Some(t), Some(m)) = (&tabulation, &measured) {
+        if t.converged && !m.is_finite() {
+            return Err(LawError::format(
+                "tabulation.converged",
+                format!(
+                    "true, but the measured error is not finite (largest {}): a table whose \
+                     error is infinite or undefined has not converged",
+                    fmt_num(m.max())
+                ),
+            ));
+        }
+    }
     let partial_reload = match top.opt("partial_reload") {
         None => None,
         Some(v) => {
@@ -513,11 +694,12 @@ enum J {
 }
 
 fn num_text(v: f64) -> String {
-    // every number written is finite (validated); serde_json prints the shortest
-    // representation that reads back to the same f64
+    // serde_json prints the shortest representation that reads back to the same f64; the
+    // curves are validated finite, and a non-finite value (an infinite measured error) is
+    // written as the string "inf", "-inf" or "nan", never as a finite stand-in
     match serde_json::Number::from_f64(v) {
         Some(n) => n.to_string(),
-        None => "0".into(),
+        None => Value::String(non_finite_word(v).unwrap_or("nan").to_string()).to_string(),
     }
 }
 

@@ -205,6 +205,14 @@ impl Curve {
                 ),
             )
         })?;
+        check_most_tensile(
+            &interp,
+            &d,
+            &pressure,
+            most_tensile,
+            origin,
+            most_tensile_path,
+        )?;
         let fade = fade_length(interp.nodes(), &pressure);
         Ok(Curve {
             d,
@@ -660,6 +668,60 @@ impl ContactLaw {
         let (dp, dt) = correction(pv - start, fade, x);
         (p + dp, t + dt)
     }
+}
+
+/// Relative tolerance (of the curve's largest |p|) on a special point's pressure: the
+/// rounding of a writer that computes it rather than copying a node.
+pub const MOST_TENSILE_TOLERANCE: f64 = 1e-9;
+
+/// The most tensile point of a curve lies on it, in d (checked by the caller) and in
+/// pressure: its pressure is the interpolant's at its d, and no node is more tensile (the
+/// interpolant has no overshoot, so that is its minimum), both within
+/// [`MOST_TENSILE_TOLERANCE`] of the curve's largest |p|.
+fn check_most_tensile(
+    interp: &Steffen,
+    d: &[f64],
+    pressure: &[f64],
+    mt: Point,
+    origin: f64,
+    path: &str,
+) -> Result<(), LawError> {
+    let scale = pressure.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let tol = MOST_TENSILE_TOLERANCE * scale;
+    // x as a node's x is computed: a point on a node is exactly that node
+    let on = interp.value_and_slope(mt.d - origin).0;
+    if !((mt.pressure - on).abs() <= tol) {
+        return Err(LawError::format(
+            format!("{path}.pressure"),
+            format!(
+                "{} Pa: must lie on its curve, which is {} Pa at d = {} m",
+                fmt_num(mt.pressure),
+                fmt_num(on),
+                fmt_num(mt.d)
+            ),
+        ));
+    }
+    let (k, lowest) = pressure
+        .iter()
+        .copied()
+        .enumerate()
+        .fold(
+            (0, f64::INFINITY),
+            |a, (i, p)| if p < a.1 { (i, p) } else { a },
+        );
+    if mt.pressure > lowest + tol {
+        return Err(LawError::format(
+            format!("{path}.pressure"),
+            format!(
+                "{} Pa: must be the most tensile point of its curve, but the node at d = {} m \
+                 has {} Pa",
+                fmt_num(mt.pressure),
+                fmt_num(d[k]),
+                fmt_num(lowest)
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Value and slope of a curve's interpolant at x; zero beyond its last node.

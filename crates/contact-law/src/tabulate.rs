@@ -529,6 +529,12 @@ impl Sampled {
         if best.0 != self.x[k] {
             self.insert(best.0, best.1);
             converged = self.refine(f, floor, r)?;
+            // the refinement may have sampled a point more tensile still: the most
+            // tensile point is always the most tensile node (what a reader checks)
+            let k = self.argmin();
+            if self.p[k] < best.1 {
+                best = (self.x[k], self.p[k]);
+            }
         }
         Ok((
             Point {
@@ -618,7 +624,13 @@ fn build_branch<S: LawSource + ?Sized>(
         }
         let mut s = Sampled::new(nodes);
         if path == Path::Retract {
-            s.insert(pull_out.d - d_min, pull_out.pressure);
+            // the pull-out becomes a node; its d is then the node's d as the curve writes
+            // it, d_min + x (the source's d can differ from it by rounding, and lie an ulp
+            // beyond the written reach: a special point is checked against its curve in
+            // the curve's own coordinates)
+            let x = pull_out.d - d_min;
+            s.insert(x, pull_out.pressure);
+            pull_out.d = d_min + x;
         }
         let mut f = |x: f64| src.p(d_min + x, d_min, branch);
         *converged &= s.refine(&mut f, &floor, r)?;
@@ -930,6 +942,9 @@ pub fn tabulate<S: LawSource + ?Sized>(source: &S, o: &Tabulation) -> Result<Con
     )?;
 
     let measured = measure(&mut src, &law, &built, &virgin, o, top)?;
+    // an infinite (or undefined) measured error is not a converged table, whatever the
+    // refinement said at its own check points
+    converged &= measured.is_finite();
     law.meta.measured = Some(measured);
     law.meta.tabulation = Some(TabulationInfo {
         tolerance: o.tolerance,

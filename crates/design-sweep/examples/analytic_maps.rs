@@ -12,7 +12,7 @@ fn point(ratio: f64, restoring: f64, closes: bool) -> DesignPoint {
         pull_out_ratio: if closes { ratio } else { 0.0 },
         largest_pull_out_pa: if closes { ratio * restoring } else { 0.0 },
         restoring_pressure_pa: restoring,
-        cycles_to_accommodation: Some(5),
+        cycles_to_accommodation: closes.then_some(5),
         first_sticking_cycle: (closes && ratio > 1.0).then_some(1),
         sticks: closes && ratio > 1.0,
         closes,

@@ -2,6 +2,7 @@ use thiserror::Error;
 
 /// Errors of the `design-sweep` crate. Every message names the offending input.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum DesignError {
     /// A `--vary FIELD=FROM:TO:lin|log:N` option that does not parse or validate.
     #[error("invalid --vary `{option}`: {reason}")]
@@ -33,6 +34,16 @@ pub enum DesignError {
     /// A `map.json` that does not parse as a design map.
     #[error("not a design map: {0}")]
     MapJson(String),
+    /// A `map.json` file that cannot be read (missing, not a regular file, larger than
+    /// [`crate::MAX_MAP_BYTES`], not UTF-8) or whose content is not a design map
+    /// ([`crate::Map::read_path`]).
+    #[error("{path}: {reason}")]
+    MapFile {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// Invalid threshold-search input (range, tolerance, field name).
     #[error("invalid threshold search: {0}")]
     Threshold(String),

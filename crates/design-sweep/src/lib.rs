@@ -60,6 +60,7 @@ pub use error::DesignError;
 pub use grid::{Axis, Grid, Spacing, MAX_AXIS_POINTS, MAX_GRID_POINTS};
 pub use map::{
     merge, run_map, Map, MapPoint, MapRequest, MapSummary, CSV_COLUMNS, MAP_FORMAT, MAP_VERSION,
+    MAX_MAP_BYTES,
 };
 pub use point::{DesignPoint, PointError, Status};
 pub use shard::Shard;

@@ -8,12 +8,45 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize, Serializer};
 use serde_json::Value;
 use std::collections::BTreeMap;
+use std::io::Read;
+use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The `format` tag of `map.json`.
 pub const MAP_FORMAT: &str = "stiction-design-map";
 /// The `version` of `map.json` written by this crate.
 pub const MAP_VERSION: u32 = 1;
+
+/// Largest `map.json` that [`Map::read_path`] reads (bytes): a map of the largest grid
+/// ([`crate::MAX_GRID_POINTS`] points, about 300 bytes each with their failure messages)
+/// fits; anything larger is not a map and is refused unread.
+pub const MAX_MAP_BYTES: u64 = 1 << 30;
+
+/// A file type in words, for an error.
+fn kind(m: &std::fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = m.file_type();
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_char_device() {
+            return "a character device";
+        }
+        if t.is_block_device() {
+            return "a block device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if m.is_dir() {
+        "a folder"
+    } else {
+        "not a file"
+    }
+}
 
 /// The columns of `map.csv` after the varied fields, in order.
 pub const CSV_COLUMNS: [&str; 8] = [
@@ -208,9 +241,65 @@ impl Map {
         s
     }
 
+    /// Reads a `map.json` file with [`Map::from_json`], refusing before reading it whole
+    /// what cannot be one: a path that is not a regular file (a FIFO, a device such as
+    /// `/dev/zero`, a folder) and a file larger than [`MAX_MAP_BYTES`] (a file that grows
+    /// while read is stopped at the cap). Errors ([`DesignError::MapFile`]) name the file.
+    pub fn read_path(path: impl AsRef<Path>) -> Result<Map, DesignError> {
+        let path = path.as_ref();
+        let shown = path.display().to_string();
+        let fail = |reason: String| DesignError::MapFile {
+            path: shown.clone(),
+            reason,
+        };
+        // the type first, from the path: opening a FIFO would block until a writer comes
+        let meta = std::fs::metadata(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+        let regular = |m: &std::fs::Metadata| -> Result<(), DesignError> {
+            if !m.is_file() {
+                return Err(fail(format!(
+                    "not a regular file ({}): a map.json is a file written by `design map`",
+                    kind(m)
+                )));
+            }
+            if m.len() > MAX_MAP_BYTES {
+                return Err(fail(format!(
+                    "{} bytes, larger than {MAX_MAP_BYTES} bytes: not a design map",
+                    m.len()
+                )));
+            }
+            Ok(())
+        };
+        regular(&meta)?;
+        let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+        // the same checks on the file opened (the path may have changed in between)
+        regular(
+            &file
+                .metadata()
+                .map_err(|e| fail(format!("cannot read: {e}")))?,
+        )?;
+        let mut bytes = Vec::new();
+        file.take(MAX_MAP_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(|e| fail(format!("cannot read: {e}")))?;
+        if bytes.len() as u64 > MAX_MAP_BYTES {
+            return Err(fail(format!(
+                "larger than {MAX_MAP_BYTES} bytes (it grew while read): not a design map"
+            )));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| {
+            fail(format!(
+                "not UTF-8 text (byte {}): not a design map",
+                e.utf8_error().valid_up_to()
+            ))
+        })?;
+        Map::from_json(&text).map_err(|e| fail(e.to_string()))
+    }
+
     /// Reads a `map.json` back (numbers bit-identical), checking it is consistent: known
     /// format, valid grid and shard, points ascending, belonging to the shard, with the
-    /// grid's values.
+    /// grid's values (and no other field), the status agreeing with the values present
+    /// and each point's values agreeing with each other ([`DesignPoint::check`]). Errors
+    /// name the point index and the key.
     pub fn from_json(text: &str) -> Result<Map, DesignError> {
         let m: MapIn =
             serde_json::from_str(text).map_err(|e| DesignError::MapJson(e.to_string()))?;
@@ -253,8 +342,34 @@ impl Map {
                     )));
                 }
             }
-            let status = Status::from_parts(&p.status, p.detail)
+            if let Some(k) = p
+                .values
+                .keys()
+                .find(|k| !m.grid.axes().iter().any(|a| &a.field == *k))
+            {
+                return Err(bad(format!(
+                    "point {i}: values.{k}: not a field of the grid"
+                )));
+            }
+            let status = Status::from_parts(&p.status, p.detail.clone())
                 .ok_or_else(|| bad(format!("point {i}: unknown status `{}`", p.status)))?;
+            // a detail exactly where the writer puts one: with out_of_domain and failed
+            match (status.detail().is_some(), &p.detail) {
+                (true, None) => {
+                    return Err(bad(format!(
+                        "point {i}: detail missing: status `{}` says why in `detail`",
+                        p.status
+                    )))
+                }
+                (false, Some(d)) => {
+                    return Err(bad(format!(
+                        "point {i}: detail = {:?}: status `{}` has no detail",
+                        d.chars().take(60).collect::<String>(),
+                        p.status
+                    )))
+                }
+                _ => {}
+            }
             let design = match (
                 status.has_design(),
                 p.pull_out_ratio,
@@ -264,7 +379,7 @@ impl Map {
                 p.closes,
             ) {
                 (true, Some(r), Some(po), Some(rp), Some(sticks), Some(closes)) => {
-                    Some(DesignPoint {
+                    let d = DesignPoint {
                         pull_out_ratio: r,
                         largest_pull_out_pa: po,
                         restoring_pressure_pa: rp,
@@ -272,9 +387,22 @@ impl Map {
                         first_sticking_cycle: p.first_sticking_cycle,
                         sticks,
                         closes,
-                    })
+                    };
+                    if closes != (status == Status::Ok) {
+                        return Err(bad(format!(
+                            "point {i}: closes = {closes} with status `{}`: a point is `ok` \
+                             exactly when the switch closes (`does_not_close` otherwise)",
+                            p.status
+                        )));
+                    }
+                    d.check().map_err(|m| bad(format!("point {i}: {m}")))?;
+                    Some(d)
                 }
-                (false, None, None, None, None, None) => None,
+                (false, None, None, None, None, None)
+                    if p.cycles_to_accommodation.is_none() && p.first_sticking_cycle.is_none() =>
+                {
+                    None
+                }
                 _ => {
                     return Err(bad(format!(
                         "point {i}: status `{}` does not match the values present",

@@ -37,6 +37,102 @@ impl DesignPoint {
             closes: false,
         }
     }
+
+    /// Checks that the values agree with each other, as a switch run makes them:
+    ///
+    /// * `pull_out_ratio`, `largest_pull_out_pa` and `restoring_pressure_pa` finite and >= 0;
+    /// * a closing point has `restoring_pressure_pa` > 0, `sticks` exactly when
+    ///   `pull_out_ratio` > 1, `first_sticking_cycle` exactly when it sticks, and a ratio
+    ///   above 0 only with a pull-out above 0;
+    /// * a point that does not close has ratio 0, pull-out 0, does not stick and has no
+    ///   cycle numbers (no cycle ran);
+    /// * cycle numbers count from 1.
+    ///
+    /// The error starts with the key at fault and gives its value.
+    pub fn check(&self) -> Result<(), String> {
+        let checks = [
+            ("pull_out_ratio", self.pull_out_ratio),
+            ("largest_pull_out_pa", self.largest_pull_out_pa),
+            ("restoring_pressure_pa", self.restoring_pressure_pa),
+        ];
+        for (name, v) in checks {
+            let what = if v.is_nan() {
+                "is not a number".to_owned()
+            } else if v.is_infinite() {
+                format!("= {v} is infinite")
+            } else if v < 0.0 {
+                format!("= {v:e} is negative")
+            } else {
+                continue;
+            };
+            return Err(format!("{name} {what}: must be finite and >= 0"));
+        }
+        for (name, c) in [
+            ("cycles_to_accommodation", self.cycles_to_accommodation),
+            ("first_sticking_cycle", self.first_sticking_cycle),
+        ] {
+            if c == Some(0) {
+                return Err(format!("{name} = 0: cycles count from 1"));
+            }
+        }
+        let ratio = self.pull_out_ratio;
+        if !self.closes {
+            let found = if ratio != 0.0 {
+                Some(("pull_out_ratio", format!("{ratio:e}")))
+            } else if self.largest_pull_out_pa != 0.0 {
+                Some((
+                    "largest_pull_out_pa",
+                    format!("{:e}", self.largest_pull_out_pa),
+                ))
+            } else if self.sticks {
+                Some(("sticks", "true".to_owned()))
+            } else if let Some(c) = self.cycles_to_accommodation {
+                Some(("cycles_to_accommodation", c.to_string()))
+            } else {
+                self.first_sticking_cycle
+                    .map(|c| ("first_sticking_cycle", c.to_string()))
+            };
+            return match found {
+                Some((key, v)) => Err(format!(
+                    "{key} = {v} with closes = false: a switch that does not close has ratio 0, \
+                     pull-out 0, does not stick and runs no cycle"
+                )),
+                None => Ok(()),
+            };
+        }
+        if self.restoring_pressure_pa == 0.0 {
+            return Err(
+                "restoring_pressure_pa = 0e0 with closes = true: a closing switch needs a \
+                 restoring pressure > 0 for its ratio"
+                    .to_owned(),
+            );
+        }
+        if self.sticks != (ratio > 1.0) {
+            return Err(format!(
+                "sticks = {} with pull_out_ratio = {ratio:e}: a closing switch sticks exactly \
+                 when the ratio exceeds 1",
+                self.sticks
+            ));
+        }
+        if self.first_sticking_cycle.is_some() != self.sticks {
+            return Err(match self.first_sticking_cycle {
+                Some(c) => format!(
+                    "first_sticking_cycle = {c} with sticks = false: a cycle that sticks makes \
+                     the point stick"
+                ),
+                None => "first_sticking_cycle absent with sticks = true: a sticking point \
+                         names its first sticking cycle"
+                    .to_owned(),
+            });
+        }
+        if ratio > 0.0 && self.largest_pull_out_pa == 0.0 {
+            return Err(format!(
+                "pull_out_ratio = {ratio:e} with largest_pull_out_pa = 0e0: the ratio is \
+                 proportional to the pull-out"
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// Why an evaluator could not give a [`DesignPoint`]; becomes the point's [`Status`].
@@ -117,9 +213,10 @@ impl Status {
     }
 }
 
-/// Calls `eval` and turns its answer into a status: errors, panics and non-finite or
-/// negative numbers become `OutOfDomain`/`Failed`, a switch that does not close
-/// `DoesNotClose`. The design point is returned for `Ok` and `DoesNotClose` only.
+/// Calls `eval` and turns its answer into a status: errors, panics and points that fail
+/// [`DesignPoint::check`] (non-finite or negative numbers, contradictory values) become
+/// `OutOfDomain`/`Failed`, a switch that does not close `DoesNotClose`. The design point
+/// is returned for `Ok` and `DoesNotClose` only.
 pub(crate) fn guarded<E, F>(eval: F) -> (Status, Option<DesignPoint>)
 where
     E: Into<PointError>,
@@ -140,25 +237,9 @@ where
         Err(PointError::OutOfDomain(m)) => (Status::OutOfDomain(m), None),
         Err(PointError::Failed(m)) => (Status::Failed(m), None),
         Ok(p) => {
-            let checks = [
-                ("pull_out_ratio", p.pull_out_ratio),
-                ("largest_pull_out_pa", p.largest_pull_out_pa),
-                ("restoring_pressure_pa", p.restoring_pressure_pa),
-            ];
-            for (name, v) in checks {
-                let what = if v.is_nan() {
-                    "not a number".to_owned()
-                } else if v.is_infinite() {
-                    "infinite".to_owned()
-                } else if v < 0.0 {
-                    format!("negative ({v:e})")
-                } else {
-                    continue;
-                };
+            if let Err(m) = p.check() {
                 return (
-                    Status::Failed(format!(
-                        "evaluator returned a {name} that is {what}: must be finite and >= 0"
-                    )),
+                    Status::Failed(format!("evaluator returned an inconsistent point: {m}")),
                     None,
                 );
             }

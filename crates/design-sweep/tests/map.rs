@@ -159,10 +159,9 @@ fn failing_points_get_a_status_and_the_map_completes() {
         },
         |_, _| {},
     );
-    assert!(nan
-        .points()
-        .iter()
-        .all(|p| matches!(&p.status, Status::Failed(m) if m.contains("pull_out_ratio that is not a number"))));
+    assert!(nan.points().iter().all(
+        |p| matches!(&p.status, Status::Failed(m) if m.contains("pull_out_ratio is not a number"))
+    ));
     assert!(!nan.to_json().contains("NaN"));
     serde_json::from_str::<Value>(&nan.to_json()).unwrap();
 }

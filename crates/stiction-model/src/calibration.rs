@@ -236,7 +236,14 @@ pub fn calibrate(
         select,
         ..FitOptions::default()
     };
-    let fit = cal.fit(data, &options)?;
+    // a data error found by the fit (forces off the model's scale) names the CSV file
+    let fit = cal.fit(data, &options).map_err(|e| match e {
+        e @ CalibError::Data { .. } => ModelError::InScene {
+            file: fe_file.to_string(),
+            source: Box::new(ModelError::Calibrate(e)),
+        },
+        e => e.into(),
+    })?;
     let fitted = fit.fit();
     let model_forces = cal.predict(fitted, data)?;
     let points = data

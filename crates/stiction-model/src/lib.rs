@@ -33,6 +33,11 @@
 //! # Ok::<(), stiction_model::ModelError>(())
 //! ```
 
+// The README's example is compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 pub mod accuracy;
 pub mod asperity;
 pub mod calibration;
