@@ -104,7 +104,14 @@ impl Loaded {
 
 /// The option a library argument came from, for messages (`vary` -> `--vary`).
 pub fn argument_error(e: ModelError) -> Error {
+    use stiction_model::design_sweep::DesignError;
     match e {
+        ModelError::Design(DesignError::Axis { option, reason }) => {
+            Error::usage("--vary", format!("`{option}`: {reason}"))
+        }
+        ModelError::Design(DesignError::Shard { option, reason }) => {
+            Error::usage("--shard", format!("`{option}`: {reason}"))
+        }
         ModelError::Argument {
             name,
             value,

@@ -37,7 +37,7 @@ pub enum CalibError {
         constants: usize,
     },
     /// A `--fit` selection that names no constant or an unknown one.
-    #[error("invalid --fit selection {text:?}: {reason}")]
+    #[error("invalid selection of constants {text:?}: {reason}")]
     Selection {
         /// The selection as given.
         text: String,

@@ -286,7 +286,7 @@ impl FitReport {
                 s,
                 "not determined: {}. The data fix only combinations of them (directions below, \
                  scaled coordinates); their values above depend on the start. \
-                 Add curves at other delta_max, or fit a subset such as --fit {}",
+                 Add curves at other delta_max, or fit a subset such as {}",
                 names.join(", "),
                 suggested.join(",")
             );

@@ -158,19 +158,33 @@ pub fn brent_from<E: From<CoreError>>(
     }
 }
 
-/// Steps away from a known sample `start` through `first`, each step `grow` times as far
-/// from `start` as the one before (the last step clamped to `limit`), until f changes side
-/// (f < 0 against f >= 0, as [`zeroin`] reads sides). Returns the bracket (the last sample on
-/// `start`'s side, the first on the other), or None when f keeps its side up to `limit`.
-/// The one bracket expansion of the workspace: a search outward from a known point.
+/// How [`expand_bracket`] steps away from its start.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Expansion {
+    /// Steps of one length, the first step's (x_k = x_(k-1) + h).
+    Linear,
+    /// The distance from the start multiplied by this factor (> 1) at every step
+    /// (x_k = start + h g^k).
+    Geometric(f64),
+}
+
+/// Steps away from a known sample `start` through `first` (the first point tried), as
+/// `expansion` says, the last step clamped to `limit`, until f changes side (f < 0 against
+/// f >= 0, as [`zeroin`] reads sides). Returns the bracket (the last sample on `start`'s
+/// side, the first on the other), or None when f keeps its side up to `limit` (also when
+/// `limit` is `start` itself). The one bracket expansion of the workspace.
 ///
 /// ```
-/// use contact_core::numeric::{expand_bracket, Sample};
+/// use contact_core::numeric::{expand_bracket, Expansion, Sample};
 /// use contact_core::CoreError;
 /// let f = |x: f64| Ok::<_, CoreError>(x - 37.0);
-/// let (lo, hi) = expand_bracket("x - 37", f, Sample { x: 0.0, f: -37.0 }, 1.0, 2.0, 1e3)?.unwrap();
+/// let start = Sample { x: 0.0, f: -37.0 };
+/// let (lo, hi) = expand_bracket("x - 37", f, start, 1.0, Expansion::Geometric(2.0), 1e3)?.unwrap();
 /// assert_eq!((lo.x, hi.x), (32.0, 64.0));
-/// assert!(expand_bracket("x - 37", f, Sample { x: 0.0, f: -37.0 }, 1.0, 2.0, 10.0)?.is_none());
+/// let (lo, hi) = expand_bracket("x - 37", f, start, 10.0, Expansion::Linear, 1e3)?.unwrap();
+/// assert_eq!((lo.x, hi.x), (30.0, 40.0));
+/// assert!(expand_bracket("x - 37", f, start, 1.0, Expansion::Linear, 10.0)?.is_none());
 /// # Ok::<(), CoreError>(())
 /// ```
 pub fn expand_bracket<E: From<CoreError>>(
@@ -178,24 +192,35 @@ pub fn expand_bracket<E: From<CoreError>>(
     mut f: impl FnMut(f64) -> Result<f64, E>,
     start: Sample,
     first: f64,
-    grow: f64,
+    expansion: Expansion,
     limit: f64,
 ) -> Result<Option<(Sample, Sample)>, E> {
     let side = start.f < 0.0;
     let span = limit - start.x;
-    let mut step = first - start.x;
-    if !(grow > 1.0 && step != 0.0 && (step > 0.0) == (span > 0.0)) {
+    if span == 0.0 {
+        return Ok(None);
+    }
+    let h = first - start.x;
+    let grows = match expansion {
+        Expansion::Linear => true,
+        Expansion::Geometric(g) => g > 1.0 && g.is_finite(),
+    };
+    if !(grows && h != 0.0 && h.is_finite() && (h > 0.0) == (span > 0.0)) {
         return Err(CoreError::Invalid {
             field: "bracket expansion",
-            value: step,
+            value: h,
             allowed: "a first step towards the limit and a growth factor above 1",
         }
         .into());
     }
     let mut prev = start;
-    for _ in 0..4096 {
-        let at_limit = step.abs() >= span.abs();
-        let x = if at_limit { limit } else { start.x + step };
+    let mut x = first;
+    let mut distance = h;
+    for _ in 0..100_000 {
+        let at_limit = (x - start.x).abs() >= span.abs();
+        if at_limit {
+            x = limit;
+        }
         let s = Sample {
             x,
             f: finite::<E>(what, x, f(x)?)?,
@@ -207,11 +232,17 @@ pub fn expand_bracket<E: From<CoreError>>(
             return Ok(None);
         }
         prev = s;
-        step *= grow;
+        match expansion {
+            Expansion::Linear => x += h,
+            Expansion::Geometric(g) => {
+                distance *= g;
+                x = start.x + distance;
+            }
+        }
     }
     Err(CoreError::NoConvergence {
         what,
-        iterations: 4096,
+        iterations: 100_000,
     }
     .into())
 }

@@ -5,7 +5,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum DesignError {
     /// A `--vary FIELD=FROM:TO:lin|log:N` option that does not parse or validate.
-    #[error("invalid --vary `{option}`: {reason}")]
+    #[error("invalid varied field `{option}`: {reason}")]
     Axis {
         /// The option text as given.
         option: String,
@@ -16,7 +16,7 @@ pub enum DesignError {
     #[error("invalid grid: {0}")]
     Grid(String),
     /// A `--shard K/N` option that does not parse or validate.
-    #[error("invalid --shard `{option}`: {reason}")]
+    #[error("invalid shard `{option}`: {reason}")]
     Shard {
         /// The option text as given.
         option: String,

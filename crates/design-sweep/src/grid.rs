@@ -218,7 +218,7 @@ impl Grid {
         let k = self.axes.len();
         if !(1..=2).contains(&k) {
             return Err(DesignError::Grid(format!(
-                "{k} --vary options given: a map is 1-D or 2-D (one or two --vary)"
+                "{k} varied fields given: a map is 1-D or 2-D (one or two fields)"
             )));
         }
         if k == 2 && self.axes[0].field == self.axes[1].field {

@@ -513,7 +513,7 @@ where
         m.shard.ok_or_else(|| {
             refuse(
                 label,
-                "holds an unsharded map (run with --shard K/N to make parts)".into(),
+                "holds an unsharded map (parts are made by a sharded run, K/N)".into(),
             )
         })
     };

@@ -216,12 +216,12 @@ where
     check_field(field).map_err(bad)?;
     if !(from.is_finite() && to.is_finite()) {
         return Err(bad(format!(
-            "--from {from:e} and --to {to:e} must be finite numbers"
+            "the ends of the range {from:e} and {to:e} must be finite numbers"
         )));
     }
     if from == to {
         return Err(bad(format!(
-            "--from and --to are both {from:e}: they must differ"
+            "both ends of the range are {from:e}: they must differ"
         )));
     }
     let ThresholdOptions {

@@ -4,7 +4,7 @@
 use crate::error::MkError;
 use crate::md::MdCurve;
 use crate::scales::Scales;
-use contact_core::numeric::{brent, Tolerance};
+use contact_core::numeric::{brent_from, expand_bracket, Expansion, Sample, Tolerance};
 use contact_core::{finite, positive, AdhesionLaw, CoreError, Jumps, LawError, Pair, Path};
 use std::f64::consts::PI;
 
@@ -181,18 +181,26 @@ impl Jkr {
         let c = 2.0 / 3.0 * 6f64.sqrt();
         let y_t = 6f64.powf(-1.0 / 6.0);
         let g = |y: f64| y * y * y * y - c * y - delta;
-        let mut y_hi = 2.0 * (1.0 + c.cbrt() + delta.abs().powf(0.25));
-        while g(y_hi) < 0.0 {
-            y_hi *= 2.0;
-        }
-        let y = if g(y_t) >= 0.0 {
+        let start = Sample { x: y_t, f: g(y_t) };
+        let y = if start.f >= 0.0 {
             y_t
         } else {
-            brent(
+            let ok = |y: f64| Ok::<_, CoreError>(g(y));
+            let first = 2.0 * (1.0 + c.cbrt() + delta.abs().powf(0.25));
+            let (lo, hi) = expand_bracket(
                 "JKR Delta(A) = Delta",
-                |y| Ok::<_, CoreError>(g(y)),
-                y_t,
-                y_hi,
+                ok,
+                start,
+                first,
+                Expansion::Geometric(2.0),
+                f64::MAX,
+            )?
+            .ok_or(MkError::Unresolvable { delta })?;
+            brent_from(
+                "JKR Delta(A) = Delta",
+                ok,
+                lo,
+                hi,
                 Tolerance::relative(1e-15).with_max_iter(200),
             )?
         };

@@ -15,7 +15,7 @@
 //! under displacement control. Derivations: `docs/theory.md`.
 
 use crate::error::MkError;
-use contact_core::numeric::{brent_from, Sample, Tolerance};
+use contact_core::numeric::{brent_from, expand_bracket, Expansion, Sample, Tolerance};
 use contact_core::Path;
 use contact_core::{finite, positive, CoreError};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -482,39 +482,43 @@ impl MdCurve {
         } else {
             0.0_f64.min(u_top)
         };
-        let mut hi = guess;
-        let mut g_hi = g(hi);
-        let mut lo = guess;
-        let mut g_lo = g_hi;
-        if g_hi > 0.0 {
-            // need larger s for Delta below target
-            loop {
-                lo = hi;
-                g_lo = g_hi;
-                if hi >= u_top {
-                    break;
-                }
-                hi = (hi + 2.0).min(u_top);
-                g_hi = g(hi);
-                if g_hi <= 0.0 {
-                    break;
-                }
-            }
-            if g_hi > 0.0 {
+        let start = Sample {
+            x: guess,
+            f: g(guess),
+        };
+        if start.f == 0.0 {
+            return Ok(Contact::at(l, guess.exp()).point(true));
+        }
+        let ok = |u: f64| Ok::<_, CoreError>(g(u));
+        // Delta decreases in s: above the target, larger s; below it, smaller s
+        let (lo, hi) = if start.f > 0.0 {
+            match expand_bracket(
+                "Maugis-Dugdale Delta(s)",
+                ok,
+                start,
+                guess + 2.0,
+                Expansion::Linear,
+                u_top,
+            )? {
+                Some(b) => b,
                 // target within rounding of the end of the branch
-                return Ok(Contact::at(l, hi.exp()).point(true));
+                None => return Ok(Contact::at(l, u_top.max(guess).exp()).point(true)),
             }
         } else {
-            while g_lo <= 0.0 {
-                hi = lo;
-                g_hi = g_lo;
-                lo -= 2.0;
-                if lo < U_MIN {
-                    return Err(MkError::Unresolvable { delta });
-                }
-                g_lo = g(lo);
+            match expand_bracket(
+                "Maugis-Dugdale Delta(s)",
+                ok,
+                start,
+                guess - 2.0,
+                Expansion::Linear,
+                U_MIN,
+            )? {
+                Some((above, below)) => (below, above),
+                None => return Err(MkError::Unresolvable { delta }),
             }
-        }
+        };
+        let (g_lo, g_hi) = (lo.f, hi.f);
+        let (lo, hi) = (lo.x, hi.x);
         let u = brent_from(
             "Maugis-Dugdale Delta(s) = Delta",
             |u| Ok::<_, CoreError>(g(u)),
@@ -752,32 +756,16 @@ fn bracket_sign_change(
     u_min: f64,
     u_max: f64,
 ) -> Option<(Sample, Sample)> {
-    let f0 = f(u0);
-    if f0 > 0.0 {
-        let (mut hi, mut f_hi) = (u0, f0);
-        let mut u = u0;
-        while u > u_min {
-            u -= 2.0;
-            let fu = f(u);
-            if fu <= 0.0 {
-                return Some((Sample { x: u, f: fu }, Sample { x: hi, f: f_hi }));
-            }
-            hi = u;
-            f_hi = fu;
-        }
-        None
+    let start = Sample { x: u0, f: f(u0) };
+    let ok = |u: f64| Ok::<_, CoreError>(f(u));
+    if start.f >= 0.0 {
+        expand_bracket("sign change", ok, start, u0 - 2.0, Expansion::Linear, u_min)
+            .ok()
+            .flatten()
+            .map(|(above, below)| (below, above))
     } else {
-        let (mut lo, mut f_lo) = (u0, f0);
-        let mut u = u0;
-        while u < u_max {
-            u += 2.0;
-            let fu = f(u);
-            if fu > 0.0 {
-                return Some((Sample { x: lo, f: f_lo }, Sample { x: u, f: fu }));
-            }
-            lo = u;
-            f_lo = fu;
-        }
-        None
+        expand_bracket("sign change", ok, start, u0 + 2.0, Expansion::Linear, u_max)
+            .ok()
+            .flatten()
     }
 }

@@ -6,7 +6,7 @@
 
 use crate::error::ModelError;
 use crate::spec::{Asperity, ContactSpec, Counter};
-use contact_core::numeric::{brent_from, expand_bracket, Sample, Tolerance};
+use contact_core::numeric::{brent_from, expand_bracket, Expansion, Sample, Tolerance};
 use contact_core::{AsperityHistory, AsperityModel, Path, YieldingBody};
 use serde::Serialize;
 
@@ -137,7 +137,7 @@ pub fn zero_load_interference(elastic: &Asperity) -> Result<f64, ModelError> {
         f,
         Sample { x: 0.0, f: f0 },
         first,
-        2.0,
+        Expansion::Geometric(2.0),
         elastic.radius(),
     )?
     else {

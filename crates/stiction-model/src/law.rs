@@ -19,7 +19,7 @@ use crate::keys::num;
 use crate::spec::{ContactSpec, RoughSurface, RoughnessSpec, Spec, SurfaceSpec, SwitchSpec};
 use crate::switch::{rough_surface, Laws, SwitchModel};
 use crate::{Progress, Silent};
-use contact_core::numeric::{brent_from, expand_bracket, Sample, Tolerance};
+use contact_core::numeric::{brent_from, expand_bracket, Expansion, Sample, Tolerance};
 use contact_core::{Path as SurfacePath, SurfaceLaw};
 use contact_law::tabulate::{self, Branch, GridSpec, LawSource, ReloadSource, Tabulation};
 use contact_law::{ContactLaw, MeasuredError, PartialReloadError};
@@ -411,7 +411,7 @@ fn tabulate_inner(
         warnings.push(Warning::note(
             "law_not_converged",
             format!(
-                "the table misses the tolerance {:e} where it could not refine (a cap on nodes or branches, or a --d-min grid, whose histories are not refined: give more of them or omit --d-min); the measured error (largest {:.2e}) says by how much",
+                "the table misses the tolerance {:e} where it could not refine (a cap on nodes or branches, or a user's uniform grid of histories, which is not refined: give more of them or use the adaptive default), or measured an infinite error; the measured error (largest {:.2e}) says by how much",
                 opts.tolerance,
                 measured_error.max()
             ),
@@ -507,7 +507,14 @@ fn default_histories(
     let found = if top.f >= 0.0 {
         Some(virgin_reach)
     } else {
-        match expand_bracket("first touch", g, top, virgin_reach - 0.25 * sigma, 2.0, lo)? {
+        match expand_bracket(
+            "first touch",
+            g,
+            top,
+            virgin_reach - 0.25 * sigma,
+            Expansion::Linear,
+            lo,
+        )? {
             Some((above, below)) => Some(brent_from(
                 "first touch",
                 g,
