@@ -8,7 +8,7 @@ use super::{argument_error, finish, preflight, Ctx, Outputs, SceneArgs};
 use crate::error::Error;
 use crate::output::OutputSet;
 use crate::progress::Bar;
-use crate::render::{Format, Render, Warning};
+use crate::render::{Format, Render, Validity, Warning};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -116,20 +116,38 @@ impl Render for ThresholdResult {
             "{:<16}{} (ratio to {:e}); root to {:e} of the value",
             "accuracy", self.accuracy, self.threshold.ratio_rel_error, self.threshold.tolerance
         );
+        let invalid = self
+            .threshold
+            .scan
+            .iter()
+            .filter(|p| p.validity_holds == Some(false))
+            .count();
+        if invalid > 0 {
+            let _ = writeln!(
+                s,
+                "{:<16}{invalid} of {} scan points {}",
+                "validity",
+                self.threshold.scan.len(),
+                self.validity.words()
+            );
+        }
         s
     }
 
     fn csv(&self) -> String {
-        let mut s = String::from("value,status,pull_out_ratio\n");
+        let mut s = String::from("value,status,pull_out_ratio,closes,validity_holds\n");
+        let opt = |b: Option<bool>| b.map(|b| b.to_string()).unwrap_or_default();
         for p in &self.threshold.scan {
             let _ = writeln!(
                 s,
-                "{:e},{},{}",
+                "{:e},{},{},{},{}",
                 p.value,
                 p.status,
                 p.pull_out_ratio
                     .map(|r| format!("{r:e}"))
-                    .unwrap_or_default()
+                    .unwrap_or_default(),
+                opt(p.closes),
+                opt(p.validity_holds)
             );
         }
         s
@@ -137,6 +155,10 @@ impl Render for ThresholdResult {
 
     fn warnings(&self) -> &[Warning] {
         &self.warnings
+    }
+
+    fn validity(&self) -> Option<&Validity> {
+        Some(&self.validity)
     }
 }
 
@@ -178,6 +200,9 @@ pub struct MapReport {
     /// Guards the design points raised (printed on standard error).
     #[serde(skip)]
     pub warnings: Vec<Warning>,
+    /// Whether the model holds at every point.
+    #[serde(skip)]
+    pub validity: Option<Validity>,
 }
 
 impl MapReport {
@@ -187,6 +212,7 @@ impl MapReport {
             map: r.map,
             labels: r.labels,
             warnings: r.warnings,
+            validity: Some(r.validity),
         }
     }
 
@@ -245,7 +271,30 @@ impl MapCommand {
 
 impl Render for MapReport {
     fn table(&self) -> String {
-        map_table(&self.map, &self.labels)
+        let mut s = map_table(&self.map, &self.labels);
+        let invalid = self
+            .map
+            .points()
+            .iter()
+            .filter(|p| p.design.is_some_and(|d| !d.validity_holds))
+            .count();
+        if invalid > 0 {
+            let _ = writeln!(
+                s,
+                "{:<16}{invalid} of {} points {} (validity_holds = false in map.csv)",
+                "validity",
+                self.map.points().len(),
+                self.validity
+                    .as_ref()
+                    .map(|v| v.words())
+                    .unwrap_or_else(|| "outside the model's validity".into())
+            );
+        }
+        s
+    }
+
+    fn validity(&self) -> Option<&Validity> {
+        self.validity.as_ref()
     }
 
     fn csv(&self) -> String {
@@ -297,6 +346,7 @@ impl MergeCommand {
             labels: map_labels(&map),
             map,
             warnings: Vec::new(),
+            validity: None,
         };
         let mut text = report.table();
         let written = report.files(&self.out)?.commit()?;

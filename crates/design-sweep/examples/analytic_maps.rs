@@ -16,6 +16,8 @@ fn point(ratio: f64, restoring: f64, closes: bool) -> DesignPoint {
         first_sticking_cycle: (closes && ratio > 1.0).then_some(1),
         sticks: closes && ratio > 1.0,
         closes,
+        validity_holds: true,
+        accommodation_cause: None,
     }
 }
 

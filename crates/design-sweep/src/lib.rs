@@ -26,7 +26,8 @@
 //!     Ok(DesignPoint { pull_out_ratio: ratio, largest_pull_out_pa: ratio * k,
 //!                      restoring_pressure_pa: k, cycles_to_accommodation: Some(4),
 //!                      first_sticking_cycle: (ratio > 1.0).then_some(1),
-//!                      sticks: ratio > 1.0, closes: true })
+//!                      sticks: ratio > 1.0, closes: true, validity_holds: true,
+//!                      accommodation_cause: None })
 //! };
 //! let grid = Grid::parse(&["switch.k_s=1e2:1e5:log:7"])?;
 //! let request = MapRequest { scene: serde_json::json!({"name": "demo"}), grid,
@@ -62,7 +63,7 @@ pub use map::{
     merge, run_map, Map, MapPoint, MapRequest, MapSummary, CSV_COLUMNS, MAP_FORMAT, MAP_VERSION,
     MAX_MAP_BYTES,
 };
-pub use point::{DesignPoint, PointError, Status};
+pub use point::{AccommodationCause, DesignPoint, PointError, Status};
 pub use shard::Shard;
 pub use table::{map_table, threshold_table};
 pub use threshold::{

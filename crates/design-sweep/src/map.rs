@@ -49,7 +49,7 @@ fn kind(m: &std::fs::Metadata) -> &'static str {
 }
 
 /// The columns of `map.csv` after the varied fields, in order.
-pub const CSV_COLUMNS: [&str; 8] = [
+pub const CSV_COLUMNS: [&str; 10] = [
     "pull_out_ratio",
     "largest_pull_out_pa",
     "restoring_pressure_pa",
@@ -57,6 +57,8 @@ pub const CSV_COLUMNS: [&str; 8] = [
     "first_sticking_cycle",
     "sticks",
     "closes",
+    "validity_holds",
+    "accommodation_cause",
     "status",
 ];
 
@@ -92,9 +94,10 @@ impl MapPoint {
         self.design.map(|d| d.pull_out_ratio)
     }
 
-    /// `Some(true)` if the point is free (ratio < 1), `Some(false)` if not, `None` if failed.
+    /// `Some(true)` if the point is free (it closes and its ratio is below 1), `Some(false)`
+    /// if not (it sticks, or it does not close), `None` if failed.
     pub fn free(&self) -> Option<bool> {
-        self.ratio().map(|r| r < 1.0)
+        self.design.map(|d| d.free())
     }
 }
 
@@ -221,8 +224,14 @@ impl Map {
                     row.push(opt(d.first_sticking_cycle));
                     row.push(d.sticks.to_string());
                     row.push(d.closes.to_string());
+                    row.push(d.validity_holds.to_string());
+                    row.push(match d.accommodation_cause {
+                        Some(crate::AccommodationCause::Saturated) => "saturated".into(),
+                        Some(crate::AccommodationCause::NonDeepening) => "non_deepening".into(),
+                        None => String::new(),
+                    });
                 }
-                None => row.extend(std::iter::repeat_n(String::new(), 7)),
+                None => row.extend(std::iter::repeat_n(String::new(), 9)),
             }
             row.push(p.status.word().to_owned());
             w.write_record(&row).map_err(csv_err)?;
@@ -387,6 +396,8 @@ impl Map {
                         first_sticking_cycle: p.first_sticking_cycle,
                         sticks,
                         closes,
+                        validity_holds: p.validity_holds.unwrap_or(true),
+                        accommodation_cause: p.accommodation_cause,
                     };
                     if closes != (status == Status::Ok) {
                         return Err(bad(format!(
@@ -750,4 +761,8 @@ struct PointIn {
     sticks: Option<bool>,
     #[serde(default)]
     closes: Option<bool>,
+    #[serde(default)]
+    validity_holds: Option<bool>,
+    #[serde(default)]
+    accommodation_cause: Option<crate::AccommodationCause>,
 }

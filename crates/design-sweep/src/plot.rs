@@ -436,7 +436,17 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
         .filter(|p| p.status == Status::Ok)
         .filter_map(|p| p.ratio().filter(|r| *r > 0.0).map(f64::log10))
         .collect();
-    let m = levels.iter().fold(0.1f64, |m, l| m.max(l.abs()));
+    // each side of ratio = 1 scaled by its own extreme, so that neither is pale when the
+    // other reaches far
+    let lo = levels.iter().fold(-0.1f64, |m, &l| m.min(l));
+    let hi = levels.iter().fold(0.1f64, |m, &l| m.max(l));
+    let shade = |l: f64| {
+        if l < 0.0 {
+            diverging(l / -lo)
+        } else {
+            diverging(l / hi)
+        }
+    };
 
     let title = labels.title.clone().unwrap_or_else(|| {
         format!(
@@ -478,7 +488,7 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
         let idx = g.indices(p.index);
         let ((x0, x1), (y0, y1)) = (ex[idx[0]], ey[idx[1]]);
         let fill = match (&p.status, p.ratio()) {
-            (Status::Ok, Some(r)) if r > 0.0 => diverging(r.log10() / m),
+            (Status::Ok, Some(r)) if r > 0.0 => shade(r.log10()),
             (Status::Ok | Status::DoesNotClose, Some(_)) => {
                 any_no_close = true;
                 NO_CLOSE
@@ -510,7 +520,7 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
     let mut legend =
         String::from("black line: ratio = 1 (stiction boundary); red sticks, blue free");
     if any_no_close {
-        legend.push_str("; grey: does not close");
+        legend.push_str("; grey: does not close (not free)");
     }
     if any_failed {
         legend.push_str("; x: failed or out of domain");
@@ -519,7 +529,7 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
         .map_err(plot_err)?;
 
     // colour bar
-    let bs = Scale::new(-m, m, false);
+    let bs = Scale::new(lo, hi, false);
     let mut cb = ChartBuilder::on(&bar)
         .margin_top(60)
         .margin_bottom(80)
@@ -541,10 +551,10 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
     let steps = 120;
     cb.draw_series((0..steps).map(|k| {
         let (a, b) = (
-            -m + 2.0 * m * k as f64 / steps as f64,
-            -m + 2.0 * m * (k + 1) as f64 / steps as f64,
+            lo + (hi - lo) * k as f64 / steps as f64,
+            lo + (hi - lo) * (k + 1) as f64 / steps as f64,
         );
-        Rectangle::new([(0.0, a), (1.0, b)], diverging(0.5 * (a + b) / m).filled())
+        Rectangle::new([(0.0, a), (1.0, b)], shade(0.5 * (a + b)).filled())
     }))
     .map_err(plot_err)?;
     cb.draw_series(std::iter::once(PathElement::new(

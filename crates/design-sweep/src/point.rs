@@ -22,6 +22,28 @@ pub struct DesignPoint {
     pub sticks: bool,
     /// The electrode reaches contact (dynamic pull-in).
     pub closes: bool,
+    /// The model holds at this point (no guard puts it outside its validity).
+    #[serde(default = "holds")]
+    pub validity_holds: bool,
+    /// Why the point counts as accommodated: the history saturating, or an impact that did
+    /// not deepen (every later cycle repeats it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accommodation_cause: Option<AccommodationCause>,
+}
+
+fn holds() -> bool {
+    true
+}
+
+/// Why a design point counts as accommodated (as the switch model reports it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum AccommodationCause {
+    /// The impacts still deepen, by less than the tolerance.
+    Saturated,
+    /// An impact did not go deeper than an earlier one: the history stopped changing.
+    NonDeepening,
 }
 
 impl DesignPoint {
@@ -35,7 +57,15 @@ impl DesignPoint {
             first_sticking_cycle: None,
             sticks: false,
             closes: false,
+            validity_holds: true,
+            accommodation_cause: None,
         }
+    }
+
+    /// Free of stiction: the switch closes and the ratio stays below 1. A switch that does
+    /// not close is never free (it is not a working design).
+    pub fn free(&self) -> bool {
+        self.closes && self.pull_out_ratio < 1.0
     }
 
     /// Checks that the values agree with each other, as a switch run makes them:
@@ -88,6 +118,10 @@ impl DesignPoint {
                 Some(("sticks", "true".to_owned()))
             } else if let Some(c) = self.cycles_to_accommodation {
                 Some(("cycles_to_accommodation", c.to_string()))
+            } else if let Some(c) = self.accommodation_cause {
+                Some(("accommodation_cause", format!("{c:?}")))
+            } else if !self.validity_holds {
+                Some(("validity_holds", "false".to_owned()))
             } else {
                 self.first_sticking_cycle
                     .map(|c| ("first_sticking_cycle", c.to_string()))

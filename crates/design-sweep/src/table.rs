@@ -59,15 +59,46 @@ pub fn threshold_table(t: &Threshold, labels: &Labels) -> String {
                 kind.word()
             ),
         ),
-        _ => row(
+        _ => {
+            let closes_anywhere = t.scan.iter().any(|p| p.status == "ok");
+            row(
+                &mut s,
+                "critical value",
+                match t.free_side {
+                    FreeSide::WholeRange => {
+                        "none in range: free (ratio < 1) over the whole range".into()
+                    }
+                    FreeSide::WhereItCloses => {
+                        "none in range: free (ratio < 1) wherever the switch closes".into()
+                    }
+                    _ if !closes_anywhere => {
+                        "none in range: the switch does not close anywhere in the range".into()
+                    }
+                    _ if t.closure_boundary.is_some() => {
+                        "none in range: no closing design is free (every design that closes sticks)"
+                            .to_string()
+                    }
+                    _ => "none in range: sticks (ratio >= 1) over the whole range".into(),
+                },
+            )
+        }
+    }
+    for b in &t.closure_boundaries {
+        row(
             &mut s,
-            "critical value",
-            match t.free_side {
-                FreeSide::WholeRange => "none in range: free (ratio < 1) over the whole range",
-                _ => "none in range: sticks (ratio >= 1) over the whole range",
-            }
-            .into(),
-        ),
+            "stops closing",
+            format!(
+                "at {} +- {}: the switch closes {} it and does not close {} it (a closure boundary, not a stiction boundary){}",
+                v(b.value),
+                with_unit(b.uncertainty, 2, unit),
+                b.closes_side.word(),
+                if b.closes_side == FreeSide::Above { "below" } else { "above" },
+                b.detail
+                    .as_deref()
+                    .map(|d| format!("; unresolved: {d}"))
+                    .unwrap_or_default()
+            ),
+        );
     }
     row(&mut s, "evaluations", t.evaluations.to_string());
     if t.crossings.len() > 1 {

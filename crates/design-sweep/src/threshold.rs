@@ -18,8 +18,12 @@ pub enum FreeSide {
     Below,
     /// No crossing: every evaluated point of the range is free.
     WholeRange,
-    /// No crossing: no evaluated point of the range is free.
+    /// No crossing: no evaluated point of the range is free (a switch that does not close
+    /// is not free).
     Nowhere,
+    /// No crossing: every closing point of the range is free, but some points do not
+    /// close (see the closure boundary).
+    WhereItCloses,
 }
 
 impl FreeSide {
@@ -30,6 +34,7 @@ impl FreeSide {
             FreeSide::Below => "below",
             FreeSide::WholeRange => "whole_range",
             FreeSide::Nowhere => "nowhere",
+            FreeSide::WhereItCloses => "where_it_closes",
         }
     }
 }
@@ -104,6 +109,12 @@ pub struct ScanPoint {
     /// The ratio, for `ok` and `does_not_close`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pull_out_ratio: Option<f64>,
+    /// Whether the switch closes, for `ok` and `does_not_close`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub closes: Option<bool>,
+    /// Whether the model holds at the point, for `ok` and `does_not_close`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub validity_holds: Option<bool>,
 }
 
 /// One crossing of ratio = 1.
@@ -132,16 +143,36 @@ pub struct Crossing {
     pub detail: Option<String>,
 }
 
+/// Where the switch stops closing (the electrode no longer reaches contact), between two
+/// evaluated points: a design boundary of its own, never a stiction boundary.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClosureBoundary {
+    /// The value: the midpoint of the final bracket.
+    pub value: f64,
+    /// The side where the switch closes (`above` or `below` the value).
+    pub closes_side: FreeSide,
+    /// Half the final bracket.
+    pub uncertainty: f64,
+    /// The final bracket, ascending.
+    pub bracket: [f64; 2],
+    /// Evaluations spent refining it (after the scan).
+    pub evaluations: usize,
+    /// Why it could not be refined, if it could not.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detail: Option<String>,
+}
+
 /// The answer of a threshold search. Top-level `critical_value`, `free_side`, `kind` and
-/// `uncertainty` are those of the first crossing (lowest value); without a crossing
-/// `critical_value`, `kind` and `uncertainty` are absent and `free_side` is `whole_range`
-/// or `nowhere`.
+/// `uncertainty` are those of the first crossing of ratio = 1 between closing designs
+/// (lowest value); without one, `critical_value` is null, `kind` and `uncertainty` are
+/// absent and `free_side` is `whole_range`, `where_it_closes` or `nowhere`. A switch that
+/// does not close is never on the free side: where the switch stops closing is
+/// `closure_boundary` (null when it closes everywhere or nowhere in the range).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Threshold {
     /// The varied field.
     pub parameter: String,
-    /// Critical value of the first crossing.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Critical value of the first crossing (null: none between closing designs).
     pub critical_value: Option<f64>,
     /// Free side of the first crossing, or of the whole range.
     pub free_side: FreeSide,
@@ -171,6 +202,11 @@ pub struct Threshold {
     pub ratio_rel_error: f64,
     /// Every crossing, ascending value.
     pub crossings: Vec<Crossing>,
+    /// Where the switch stops closing, the first (lowest value) of `closure_boundaries`
+    /// (null: it closes everywhere or nowhere in the range).
+    pub closure_boundary: Option<f64>,
+    /// Every closure boundary, ascending value.
+    pub closure_boundaries: Vec<ClosureBoundary>,
     /// The scan, ascending value.
     pub scan: Vec<ScanPoint>,
 }
@@ -259,6 +295,12 @@ where
 
     let xs = spaced(lo, hi, spacing, n);
     let evaluated: Vec<_> = xs.par_iter().map(|&x| guarded(|| eval(x))).collect();
+    // (u, closes, ln ratio) of the points that ran
+    let ran: Vec<(f64, bool, f64)> = xs
+        .iter()
+        .zip(&evaluated)
+        .filter_map(|(&x, (_, d))| d.map(|d| (to_u(x), d.closes, d.pull_out_ratio.ln())))
+        .collect();
     let scan: Vec<ScanPoint> = xs
         .iter()
         .zip(&evaluated)
@@ -267,14 +309,11 @@ where
             status: status.word(),
             detail: status.detail().map(str::to_owned),
             pull_out_ratio: design.map(|d| d.pull_out_ratio),
+            closes: design.map(|d| d.closes),
+            validity_holds: design.map(|d| d.validity_holds),
         })
         .collect();
-    // (u, ln ratio) of the points with a ratio; ln 0 = -inf marks "does not close"
-    let known: Vec<(f64, f64)> = scan
-        .iter()
-        .filter_map(|p| p.pull_out_ratio.map(|r| (to_u(p.value), r.ln())))
-        .collect();
-    if known.is_empty() {
+    if ran.is_empty() {
         return Err(DesignError::ScanFailed {
             parameter: field.to_owned(),
             points: n,
@@ -283,10 +322,26 @@ where
         });
     }
 
+    // ln ratio of a closing design; a design that does not close has no ratio to cross 1
     let g = |u: f64| -> Result<f64, String> {
         let x = from_u(u);
         match guarded(|| eval(x)) {
-            (_, Some(d)) => Ok(d.pull_out_ratio.ln()),
+            (_, Some(d)) if d.closes => Ok(d.pull_out_ratio.ln()),
+            (_, Some(_)) => Err(format!(
+                "does_not_close at {x:e}: the switch stops closing inside the bracket"
+            )),
+            (s, None) => Err(format!(
+                "{} at {x:e}: {}",
+                s.word(),
+                s.detail().unwrap_or_default()
+            )),
+        }
+    };
+    // +1 where the switch closes, -1 where it does not
+    let c = |u: f64| -> Result<f64, String> {
+        let x = from_u(u);
+        match guarded(|| eval(x)) {
+            (_, Some(d)) => Ok(if d.closes { 1.0 } else { -1.0 }),
             (s, None) => Err(format!(
                 "{} at {x:e}: {}",
                 s.word(),
@@ -295,10 +350,44 @@ where
         }
     };
     let mut crossings = Vec::new();
+    let mut closure_boundaries = Vec::new();
     let mut evaluations = n;
-    for w in known.windows(2) {
-        let ((ua, ga), (ub, gb)) = (w[0], w[1]);
-        if (ga < 0.0) == (gb < 0.0) {
+    for w in ran.windows(2) {
+        let ((ua, ca, ga), (ub, cb, gb)) = (w[0], w[1]);
+        if ca != cb {
+            let closes_side = if ca { FreeSide::Below } else { FreeSide::Above };
+            let sa = if ca { 1.0 } else { -1.0 };
+            let (found, detail) = match zeroin(
+                c,
+                Sample { x: ua, f: sa },
+                Sample { x: ub, f: -sa },
+                tol_u,
+                MAX_REFINE_EVALUATIONS,
+            ) {
+                Ok(b) => (b, None),
+                Err(ZeroinStop::Failed(m, b)) => (b, Some(m)),
+                Err(ZeroinStop::NoConvergence(b)) => (
+                    b,
+                    Some(format!(
+                        "no convergence after {} evaluations",
+                        b.evaluations
+                    )),
+                ),
+            };
+            evaluations += found.evaluations;
+            let (x1, x2) = (from_u(found.best.x), from_u(found.other.x));
+            let (x1, x2) = (x1.min(x2), x1.max(x2));
+            closure_boundaries.push(ClosureBoundary {
+                value: from_u(0.5 * (to_u(x1) + to_u(x2))),
+                closes_side,
+                uncertainty: 0.5 * (x2 - x1),
+                bracket: [x1, x2],
+                evaluations: found.evaluations,
+                detail,
+            });
+            continue;
+        }
+        if !ca || (ga < 0.0) == (gb < 0.0) {
             continue;
         }
         let free_side = if ga < 0.0 {
@@ -396,10 +485,12 @@ where
         (ratio_of(n - 1), ratio_of(0))
     };
     let first = crossings.first();
+    let closing: Vec<&(f64, bool, f64)> = ran.iter().filter(|r| r.1).collect();
     let free_side = match first {
         Some(c) => c.free_side,
-        None if known[0].1 < 0.0 => FreeSide::WholeRange,
-        None => FreeSide::Nowhere,
+        None if closing.is_empty() || closing[0].2 >= 0.0 => FreeSide::Nowhere,
+        None if closing.len() == ran.len() => FreeSide::WholeRange,
+        None => FreeSide::WhereItCloses,
     };
     Ok(Threshold {
         parameter: field.to_owned(),
@@ -416,6 +507,8 @@ where
         tolerance,
         ratio_rel_error,
         crossings,
+        closure_boundary: closure_boundaries.first().map(|b| b.value),
+        closure_boundaries,
         scan,
     })
 }

@@ -12,7 +12,7 @@
 
 use crate::accuracy::Accuracy;
 use crate::error::ModelError;
-use crate::guards::Warning;
+use crate::guards::{Validity, Warning};
 use crate::keys::{self, num, Key, Kind};
 use crate::laws::LawRegistry;
 use crate::scene::Scene;
@@ -41,6 +41,7 @@ pub struct Evaluator<'a> {
 struct GuardTally {
     points: usize,
     example: String,
+    breaks_validity: bool,
 }
 
 /// The settings of a design point, applied to a scene before validation: run until
@@ -126,10 +127,14 @@ impl<'a> Evaluator<'a> {
                     }
                     seen.push(w.code);
                     g.entry(w.code)
-                        .and_modify(|t| t.points += 1)
+                        .and_modify(|t| {
+                            t.points += 1;
+                            t.breaks_validity |= w.breaks_validity;
+                        })
                         .or_insert_with(|| GuardTally {
                             points: 1,
                             example: format!("at {at}: {}", w.message),
+                            breaks_validity: w.breaks_validity,
                         });
                 }
             }
@@ -145,14 +150,13 @@ impl<'a> Evaluator<'a> {
             Err(p) => p.into_inner(),
         };
         g.iter()
-            .map(|(code, t)| {
-                Warning::note(
-                    code,
-                    format!(
-                        "{} of {evaluated} design points raised it; e.g. {}",
-                        t.points, t.example
-                    ),
-                )
+            .map(|(code, t)| Warning {
+                code,
+                message: format!(
+                    "{} of {evaluated} design points raised it; e.g. {}",
+                    t.points, t.example
+                ),
+                breaks_validity: t.breaks_validity,
             })
             .collect()
     }
@@ -171,6 +175,12 @@ pub fn design_point(r: &SwitchResult) -> DesignPoint {
         first_sticking_cycle: r.first_sticking_cycle,
         sticks: r.stiction,
         closes: true,
+        validity_holds: r.validity.holds,
+        accommodation_cause: match r.accommodation_cause {
+            Some("non_deepening") => Some(design_sweep::AccommodationCause::NonDeepening),
+            Some(_) => Some(design_sweep::AccommodationCause::Saturated),
+            None => None,
+        },
     }
 }
 
@@ -312,6 +322,9 @@ pub struct ThresholdResult {
     /// Guards the design points raised.
     #[serde(skip)]
     pub warnings: Vec<Warning>,
+    /// Whether the model holds at every evaluated point (`reasons`: the checks that fail
+    /// somewhere; each scan point says where in `validity_holds`).
+    pub validity: Validity,
 }
 
 /// The critical value of `field` in [`from`, `to`] at which the pull-out ratio after
@@ -345,6 +358,7 @@ pub fn threshold(
     let t = design_sweep::threshold(f.key, from, to, |x| ev.point(&[(f.key, x)]), &options)?;
     let warnings = ev.warnings(t.evaluations);
     Ok(ThresholdResult {
+        validity: Validity::of(&warnings),
         labels: field_labels(std::iter::once(f.key)),
         unit: unit(f.key),
         accuracy: accuracy.as_str(),
@@ -362,6 +376,8 @@ pub struct MapResult {
     pub labels: Labels,
     /// Guards the design points raised.
     pub warnings: Vec<Warning>,
+    /// Whether the model holds at every point (each point says so in `validity_holds`).
+    pub validity: Validity,
 }
 
 /// The request of a map: the scene with the design settings, the grid of `vary` (each
@@ -423,6 +439,7 @@ pub fn map(
     progress.finish();
     let warnings = ev.warnings(map.points().len());
     Ok(MapResult {
+        validity: Validity::of(&warnings),
         labels: map_labels(&map),
         map,
         warnings,

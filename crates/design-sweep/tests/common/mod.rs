@@ -13,6 +13,8 @@ pub fn point(ratio: f64, restoring: f64) -> DesignPoint {
         first_sticking_cycle: (ratio > 1.0).then_some(1),
         sticks: ratio > 1.0,
         closes: true,
+        validity_holds: true,
+        accommodation_cause: None,
     }
 }
 
