@@ -2,45 +2,30 @@
 //! (10 cycles and the elastic comparison, pull-out only and with 200-point curves).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use stiction::accuracy::Accuracy;
-use stiction::commands::asperity::AsperityCommand;
-use stiction::commands::{switch, Command};
-use stiction::render::Format;
-use stiction::scene::{self, AsperityScene, Loaded, Scene, SwitchScene};
+use stiction::model::keys::Kind;
+use stiction::model::laws::LawRegistry;
+use stiction::model::scene::Scene;
+use stiction::model::spec::{AsperitySpec, SwitchSpec};
+use stiction::model::switch::SwitchModel;
+use stiction::model::{asperity, Accuracy, Silent};
 
 fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("scenes");
     g.sample_size(10);
-    let mut a: AsperityScene = scene::parse("bench", scene::DEFAULT_ASPERITY).unwrap();
-    a.validate("bench").unwrap();
-    let asperity = Loaded {
-        file: "bench".into(),
-        scene: a,
-        is_paper: true,
-    };
-    let cmd = AsperityCommand {
-        scene: None,
-        delta_max: vec![],
-        format: Format::Json,
-        plot: None,
-    };
+    let registry = LawRegistry::builtin();
+    let asperity = AsperitySpec::new(&Scene::paper(Kind::Asperity), &registry).unwrap();
     g.bench_function("asperity Fig 2, 3 cases x 200 points", |b| {
-        b.iter(|| cmd.run(&asperity).unwrap())
+        b.iter(|| asperity::run(&asperity).unwrap())
     });
+    let paper = SwitchSpec::new(&Scene::paper(Kind::Switch), &registry).unwrap();
     for acc in [Accuracy::Accurate, Accuracy::Balanced, Accuracy::Fast] {
         for points in [0usize, 200] {
-            let mut s: SwitchScene = scene::parse("bench", scene::DEFAULT_SWITCH).unwrap();
-            s.accuracy = acc;
-            s.points = points;
-            s.validate("bench").unwrap();
-            let loaded = Loaded {
-                file: "bench".into(),
-                scene: s,
-                is_paper: true,
-            };
+            let mut spec = paper.clone();
+            spec.common.accuracy = acc;
+            spec.common.points = points;
             g.bench_function(
                 format!("switch 10 cycles + elastic, {acc}, {points} curve points"),
-                |b| b.iter(|| switch::run(&loaded, false).unwrap()),
+                |b| b.iter(|| SwitchModel::build(&spec).unwrap().run(&Silent).unwrap()),
             );
         }
     }

@@ -4,15 +4,18 @@
 mod common;
 use common::{stiction, temp_file};
 use proptest::prelude::*;
-use stiction::scene::{self, AsperityScene, Scene, SurfaceScene, SwitchScene};
+use stiction::model::keys::{self, Domain, Kind};
+use stiction::model::laws::LawRegistry;
+use stiction::model::scene::{self, Scene};
+use stiction::model::spec::{AsperitySpec, Spec, SurfaceSpec, SwitchSpec};
 
 /// Replaces the line of the default `kind` scene starting with `key =` by `line`
 /// (appends it when `key` is empty).
 fn edit(kind: &str, key: &str, line: &str) -> String {
     let base = match kind {
-        "asperity" => scene::DEFAULT_ASPERITY,
-        "surface" => scene::DEFAULT_SURFACE,
-        _ => scene::DEFAULT_SWITCH,
+        "asperity" => scene::PAPER_ASPERITY,
+        "surface" => scene::PAPER_SURFACE,
+        _ => scene::PAPER_SWITCH,
     };
     if key.is_empty() {
         return format!("{line}\n{base}\n");
@@ -105,7 +108,10 @@ fn cases() -> Vec<Case> {
             "asperity",
             "poisson_ratio",
             "poisson_ratio = \"abc\"",
-            &["invalid type: string \"abc\", expected f64"],
+            &[
+                "invalid `contact.poisson_ratio` = \"abc\"",
+                "must be a number",
+            ],
         ),
         scene_case(
             "NaN yield stress",
@@ -140,14 +146,17 @@ fn cases() -> Vec<Case> {
             "asperity",
             "radius",
             "radus = 4e-6",
-            &["unknown field `radus`"],
+            &[
+                "unknown key `contact.radus`",
+                "did you mean `contact.radius`?",
+            ],
         ),
         scene_case(
             "missing key",
             "asperity",
             "radius",
             "",
-            &["missing field `radius`"],
+            &["missing `contact.radius`"],
         ),
         scene_case(
             "missing eq-1 reading explains both",
@@ -161,7 +170,7 @@ fn cases() -> Vec<Case> {
             "switch",
             "",
             "colour = \"red\"",
-            &["unknown field `colour`"],
+            &["unknown key `colour`"],
         ),
         scene_case(
             "zero work of adhesion",
@@ -196,7 +205,10 @@ fn cases() -> Vec<Case> {
             "asperity",
             "adhesion_law",
             "adhesion_law = \"lennard_jones\"",
-            &["unknown variant `lennard_jones`"],
+            &[
+                "invalid `contact.adhesion_law` = \"lennard_jones\"",
+                "registered adhesion laws",
+            ],
         ),
         scene_case(
             "bad eq-13 constant",
@@ -238,7 +250,7 @@ fn cases() -> Vec<Case> {
             "surface",
             "accuracy",
             "accuracy = \"perfect\"",
-            &["unknown variant `perfect`"],
+            &["invalid `accuracy` = \"perfect\""],
         ),
         scene_case(
             "negative impact energy",
@@ -315,7 +327,7 @@ fn cases() -> Vec<Case> {
             "switch",
             "d0",
             "d0 = \"2 um\"",
-            &["invalid type: string \"2 um\""],
+            &["invalid `switch.d0` = \"2 um\"", "must be a number"],
         ),
         Case {
             name: "empty file",
@@ -382,7 +394,7 @@ fn cases() -> Vec<Case> {
         arg_case(
             "zero cycles names the option",
             &["switch", "--cycles", "0"],
-            &["--cycles", "'0'", "an integer in [1, 1000]"],
+            &["invalid --cycles: 0:", "an integer in [1, 1000]"],
         ),
         arg_case(
             "negative delta_max flag names the option",
@@ -392,7 +404,12 @@ fn cases() -> Vec<Case> {
         arg_case(
             "unload_from out of range names the option",
             &["surface", "--unload-from", "1e308"],
-            &["invalid --unload-from", "1e308 m", "20 sigma_s"],
+            &["invalid --unload-from", "1e308", "[-2e-5, 2e-5]"],
+        ),
+        arg_case(
+            "unload_from beyond 20 sigma_s names the option and the rule",
+            &["surface", "--unload-from", "1e-5"],
+            &["invalid --unload-from", "1e-5 m", "20 sigma_s"],
         ),
         arg_case(
             "missing scene file",
@@ -498,11 +515,8 @@ fn bad_inputs_get_a_named_error_and_the_right_exit_status() {
 /// docs/validation.md is checked against the same registry in tests/domains.rs).
 #[test]
 fn every_numeric_domain_is_enforced_at_both_ends() {
-    use stiction::scene::fields::{self, Domain};
-    for f in fields::FIELDS
-        .iter()
-        .filter(|f| f.scenes.contains(&fields::Kind::Switch))
-    {
+    let registry = LawRegistry::builtin();
+    for f in keys::KEYS.iter().filter(|f| f.in_kind(Kind::Switch)) {
         let (lo, hi) = match f.domain {
             Domain::Range { lo, hi, .. } => (lo, hi),
             Domain::RangeOrInfinite { lo } => (lo, f64::INFINITY),
@@ -514,29 +528,29 @@ fn every_numeric_domain_is_enforced_at_both_ends() {
         {
             continue; // keys of the other drive or of counter = "material", checked above
         }
-        let base: SwitchScene = scene::parse("t", scene::DEFAULT_SWITCH).unwrap();
         for bad in [lo - lo.abs().max(1e-300) * 1e-6 - 1e-300, hi * (1.0 + 1e-6)] {
             if !bad.is_finite() {
                 continue;
             }
-            let Ok(mut s) = scene::with_field(&base, f.key, bad) else {
+            let mut s = Scene::paper(Kind::Switch);
+            if s.set_number(f.key, bad).is_err() {
                 continue; // an integer key refuses a fraction before validation
-            };
-            let e = s.validate("t").expect_err(f.key).to_string();
+            }
+            let e = SwitchSpec::new(&s, &registry).expect_err(f.key).to_string();
             assert!(e.contains(f.key), "{}: {e}", f.key);
         }
     }
 }
 
+/// Parses `text` as a scene and validates it as each kind of scene and as the kind it
+/// says or implies: errors are expected, panics are not.
 fn parse_all(text: &str) {
-    if let Ok(mut s) = scene::parse::<AsperityScene>("fuzz", text) {
-        let _ = s.validate("fuzz");
-    }
-    if let Ok(mut s) = scene::parse::<SurfaceScene>("fuzz", text) {
-        let _ = s.validate("fuzz");
-    }
-    if let Ok(mut s) = scene::parse::<SwitchScene>("fuzz", text) {
-        let _ = s.validate("fuzz");
+    let registry = LawRegistry::builtin();
+    if let Ok(scene) = Scene::from_toml_str("fuzz", text) {
+        let _ = AsperitySpec::new(&scene, &registry);
+        let _ = SurfaceSpec::new(&scene, &registry);
+        let _ = SwitchSpec::new(&scene, &registry);
+        let _ = Spec::new(&scene, &registry);
     }
 }
 
@@ -555,7 +569,7 @@ proptest! {
         Just("{}".to_string()), Just("true".to_string()), any::<f64>().prop_map(|x| format!("{x:e}")),
         any::<i64>().prop_map(|x| x.to_string()),
     ], drop in any::<bool>()) {
-        for base in [scene::DEFAULT_ASPERITY, scene::DEFAULT_SURFACE, scene::DEFAULT_SWITCH] {
+        for base in [scene::PAPER_ASPERITY, scene::PAPER_SURFACE, scene::PAPER_SWITCH] {
             let lines: Vec<&str> = base.lines().collect();
             let i = line % lines.len();
             let mut out: Vec<String> = lines.iter().map(|s| s.to_string()).collect();

@@ -1,8 +1,8 @@
-//! The scene-field table of docs/validation.md is the field registry's: every key with its
+//! The scene-key table of docs/validation.md is the key registry's: every key with its
 //! unit, domain and default, nothing more, nothing less. (`tests/cli_errors.rs` checks that
 //! each numeric domain is enforced at both ends.)
 
-use stiction::scene::fields::{markdown_table, FIELDS};
+use stiction::model::keys::{markdown_table, KEYS};
 
 const BEGIN: &str = "<!-- scene fields: begin -->";
 const END: &str = "<!-- scene fields: end -->";
@@ -27,7 +27,7 @@ fn the_documented_domains_are_the_enforced_ones() {
 #[test]
 fn every_key_is_documented_once() {
     let doc = documented();
-    for f in FIELDS {
+    for f in KEYS {
         let row = format!("| `{}` |", f.key);
         assert_eq!(
             doc.lines().filter(|l| l.starts_with(&row)).count(),
@@ -37,5 +37,5 @@ fn every_key_is_documented_once() {
         );
     }
     // header, separator and one row per key
-    assert_eq!(doc.lines().count(), FIELDS.len() + 2);
+    assert_eq!(doc.lines().count(), KEYS.len() + 2);
 }

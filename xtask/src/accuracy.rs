@@ -5,39 +5,33 @@
 
 use std::io::IsTerminal;
 use std::time::Instant;
-use stiction::accuracy::Accuracy;
-use stiction::commands::switch::{self, SwitchReport};
-use stiction::scene::{Loaded, Scene, SwitchScene};
-use stiction::scenegen::{self, Domain, Rng};
+use stiction_model::laws::LawRegistry;
+use stiction_model::scenegen::{self, Domain, Rng};
+use stiction_model::spec::SwitchSpec;
+use stiction_model::switch::{SwitchModel, SwitchResult};
+use stiction_model::{Accuracy, ModelError, Silent};
 
 const BEGIN: &str = "<!-- xtask accuracy: begin -->";
 const END: &str = "<!-- xtask accuracy: end -->";
 
-fn run(s: &SwitchScene, mode: Accuracy) -> (Result<SwitchReport, stiction::Error>, f64) {
+fn run(s: &SwitchSpec, mode: Accuracy) -> (Result<SwitchResult, ModelError>, f64) {
     let mut s = s.clone();
-    s.accuracy = mode;
+    s.common.accuracy = mode;
     let t = Instant::now();
-    let r = switch::run(
-        &Loaded {
-            file: "generated".into(),
-            scene: s,
-            is_paper: false,
-        },
-        false,
-    );
+    let r = SwitchModel::build(&s).and_then(|m| m.run(&Silent));
     (r, t.elapsed().as_secs_f64())
 }
 
 /// Whether a run ended because the model has no end of impact for the scene (the surface
 /// cannot absorb the impact energy): an answer about the scene, not a numerical failure.
-fn no_end_of_impact(e: &stiction::Error) -> bool {
+fn no_end_of_impact(e: &ModelError) -> bool {
     matches!(
         e.cause(),
-        stiction::Error::Switch(stiction::switch_1d::SwitchError::EnergyNotAbsorbed { .. })
+        ModelError::Switch(stiction_model::switch_1d::SwitchError::EnergyNotAbsorbed { .. })
     )
 }
 
-fn errors(a: &SwitchReport, b: &SwitchReport, sigma: f64) -> (f64, f64) {
+fn errors(a: &SwitchResult, b: &SwitchResult, sigma: f64) -> (f64, f64) {
     let floor = 1e-9 * a.restoring_pressure / a.contact_area_fraction;
     a.cycles
         .iter()
@@ -55,11 +49,11 @@ fn errors(a: &SwitchReport, b: &SwitchReport, sigma: f64) -> (f64, f64) {
 
 /// A scene the table flags, on stderr as a scene file, so that it can be rerun alone
 /// (`stiction switch --scene`).
-fn report_scene(s: &SwitchScene) {
-    match toml::to_string(s) {
-        Ok(text) => eprintln!("\n# scene flagged by xtask accuracy\n{text}"),
-        Err(e) => eprintln!("\nscene flagged but not printable: {e}"),
-    }
+fn report_scene(s: &SwitchSpec) {
+    eprintln!(
+        "\n# scene flagged by xtask accuracy\n{}",
+        scenegen::to_toml(&s.common.scene)
+    );
 }
 
 fn quantile(v: &mut [f64], q: f64) -> f64 {
@@ -101,6 +95,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
         }
     }
     let modes = [Accuracy::Accurate, Accuracy::Balanced, Accuracy::Fast];
+    let registry = LawRegistry::builtin();
     // a counter that rewrites its line only makes sense on a terminal
     let progress = std::io::stderr().is_terminal();
     let mut table = String::new();
@@ -110,10 +105,10 @@ pub fn main(args: &[&str]) -> Result<(), String> {
         let mut stats: Vec<Stats> = modes.iter().map(|_| Stats::default()).collect();
         let (mut scenes, mut unanswered, mut reference_failed) = (0, 0, 0);
         while scenes < n / 2 {
-            let mut s = scenegen::switch_scene(&mut rng, domain);
-            if s.validate("generated").is_err() {
+            let scene = scenegen::switch_scene(&mut rng, domain, "generated");
+            let Ok(s) = SwitchSpec::new(&scene, &registry) else {
                 continue;
-            }
+            };
             scenes += 1;
             let (reference, _) = run(&s, Accuracy::Reference);
             let reference = match reference {
@@ -129,7 +124,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                     continue;
                 }
             };
-            let sigma = s.surface.sigma_s;
+            let sigma = s.roughness.sigma_s;
             for (k, &mode) in modes.iter().enumerate() {
                 let (r, t) = run(&s, mode);
                 match r {
@@ -139,7 +134,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                         if de > tg.d_e_tolerance_sigma || po > tg.pull_out_tolerance {
                             stats[k].over += 1;
                             report_scene(&s);
-                            notes.push(format!("{domain:?} {mode}: d_e {de:.1e} sigma_s, pull-out {po:.1e} ({:?}, {:?}, eq 1 {:?})", s.contact.adhesion_law, s.contact.plasticity_law, s.contact.yield_modulus));
+                            notes.push(format!("{domain:?} {mode}: d_e {de:.1e} sigma_s, pull-out {po:.1e} ({}, {}, eq 1 {}, reload {})", s.contact.adhesion.name, s.contact.plasticity.name, s.contact.yield_modulus.as_str(), s.contact.reload.as_str()));
                         }
                         stats[k].de.push(de);
                         stats[k].po.push(po);

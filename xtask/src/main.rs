@@ -1,7 +1,7 @@
 //! `cargo xtask verify [--update]`: solves every embedded scene and compares its curves
 //! and figures with the insta snapshots in `xtask/snapshots/`.
 //! `cargo xtask tradeoff`: the speed/accuracy trade of the paper's switch, per mode.
-//! `cargo xtask docs`: the scene-field table of docs/validation.md from the registry.
+//! `cargo xtask docs`: the scene-key table of docs/validation.md from the key registry.
 //! `cargo xtask accuracy [--scenes N] [--seed S]`: each mode's error and speed-up over
 //! random scenes of the documented domains (docs/performance.md).
 //!
@@ -26,11 +26,12 @@ fn report(r: Result<(), String>) -> ExitCode {
 
 use serde_json::Value;
 use std::process::ExitCode;
-use stiction::commands::asperity::AsperityCommand;
-use stiction::commands::surface::SurfaceCommand;
-use stiction::commands::{md, switch, Command};
-use stiction::render::Format;
-use stiction::scene::{self, AsperityScene, Loaded, Scene, SurfaceScene, SwitchScene};
+use stiction_model::keys::Kind;
+use stiction_model::laws::LawRegistry;
+use stiction_model::scene::Scene;
+use stiction_model::spec::{AsperitySpec, SurfaceSpec, SwitchSpec};
+use stiction_model::switch::SwitchModel;
+use stiction_model::{asperity, md, surface, Silent};
 
 const DIGITS: i32 = 7;
 /// Points per curve in the snapshots: enough to see every branch, few enough to review.
@@ -101,75 +102,44 @@ fn committed(name: &str) -> Option<Value> {
 /// Every embedded scene solved as the CLI solves it, with `POINTS`-point curves; the
 /// scene echo is left out (it is the committed scene file itself).
 fn scenes() -> Result<Vec<(String, Value)>, String> {
-    let err = |e: stiction::Error| e.to_string();
+    let err = |e: stiction_model::ModelError| e.to_string();
+    let json = |v: Result<Value, serde_json::Error>| v.map_err(|e| e.to_string());
     let strip = |mut v: Value| {
         if let Some(o) = v.as_object_mut() {
             o.remove("scene");
         }
         v
     };
+    // the paper's scene of `kind` with `POINTS`-point curves
+    let paper = |kind: Kind| -> Result<Scene, String> {
+        let mut s = Scene::paper(kind);
+        s.set_number("points", POINTS as f64)
+            .map_err(|e| e.to_string())?;
+        Ok(s)
+    };
+    let registry = LawRegistry::builtin();
     let mut out = Vec::new();
     for lambda in [0.01, 0.1, 0.5, 0.9, 1.0, 2.0, 10.0, 100.0] {
         let r = md::curve(lambda, POINTS, 5.0).map_err(err)?;
         out.push((
             format!("md_lambda_{lambda}"),
-            serde_json::to_value(r).map_err(|e| e.to_string())?,
+            json(serde_json::to_value(r))?,
         ));
     }
-    let mut a: AsperityScene =
-        scene::parse("asperity", scene::DEFAULT_ASPERITY).map_err(|e| e.to_string())?;
-    a.points = POINTS;
-    a.validate("asperity").map_err(|e| e.to_string())?;
-    let cmd = AsperityCommand {
-        scene: None,
-        delta_max: vec![],
-        format: Format::Json,
-        plot: None,
-    };
-    let r = cmd
-        .run(&Loaded {
-            file: "asperity".into(),
-            scene: a,
-            is_paper: true,
-        })
-        .map_err(err)?;
+    let spec = AsperitySpec::new(&paper(Kind::Asperity)?, &registry).map_err(err)?;
+    let r = asperity::run(&spec).map_err(err)?;
     out.push((
         "asperity_fig2".into(),
-        strip(serde_json::to_value(r).unwrap()),
+        strip(json(serde_json::to_value(r))?),
     ));
-    let mut s: SurfaceScene =
-        scene::parse("surface", scene::DEFAULT_SURFACE).map_err(|e| e.to_string())?;
-    s.points = POINTS;
-    s.validate("surface").map_err(|e| e.to_string())?;
-    let cmd = SurfaceCommand {
-        scene: None,
-        unload_from: None,
-        accuracy: None,
-        format: Format::Json,
-        plot: None,
-    };
-    let r = cmd
-        .run(&Loaded {
-            file: "surface".into(),
-            scene: s,
-            is_paper: true,
-        })
+    let spec = SurfaceSpec::new(&paper(Kind::Surface)?, &registry).map_err(err)?;
+    let r = surface::run(&spec).map_err(err)?;
+    out.push(("surface_ru".into(), strip(json(serde_json::to_value(r))?)));
+    let spec = SwitchSpec::new(&paper(Kind::Switch)?, &registry).map_err(err)?;
+    let r = SwitchModel::build(&spec)
+        .and_then(|m| m.run(&Silent))
         .map_err(err)?;
-    out.push(("surface_ru".into(), strip(serde_json::to_value(r).unwrap())));
-    let mut w: SwitchScene =
-        scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
-    w.points = POINTS;
-    w.validate("switch").map_err(|e| e.to_string())?;
-    let r = switch::run(
-        &Loaded {
-            file: "switch".into(),
-            scene: w,
-            is_paper: true,
-        },
-        false,
-    )
-    .map_err(err)?;
-    let mut v = strip(serde_json::to_value(&r).unwrap());
+    let mut v = strip(json(serde_json::to_value(&r))?);
     // the elastic comparison gets a snapshot of its own
     let elastic = v
         .as_object_mut()
@@ -180,8 +150,8 @@ fn scenes() -> Result<Vec<(String, Value)>, String> {
     Ok(out)
 }
 
-/// `cargo xtask docs`: rewrites the scene-field table of docs/validation.md from the
-/// field registry (`tests/domains.rs` fails while the two differ).
+/// `cargo xtask docs`: rewrites the scene-key table of docs/validation.md from the key
+/// registry (`tests/domains.rs` fails while the two differ).
 fn field_table() -> Result<(), String> {
     const BEGIN: &str = "<!-- scene fields: begin -->";
     const END: &str = "<!-- scene fields: end -->";
@@ -190,14 +160,14 @@ fn field_table() -> Result<(), String> {
     let (Some(a), Some(b)) = (doc.find(BEGIN), doc.find(END)) else {
         return Err(format!("{path}: no {BEGIN} ... {END} markers"));
     };
-    let table = stiction::scene::fields::markdown_table();
+    let table = stiction_model::keys::markdown_table();
     let new = format!(
         "{}{BEGIN}\n{table}{END}{}",
         &doc[..a],
         &doc[b + END.len()..]
     );
     std::fs::write(path, new).map_err(|e| format!("{path}: {e}"))?;
-    println!("wrote the scene-field table of docs/validation.md");
+    println!("wrote the scene-key table of docs/validation.md");
     Ok(())
 }
 

@@ -4,32 +4,28 @@
 //! docs/figures/tradeoff.svg.
 
 use std::time::Instant;
-use stiction::accuracy::Accuracy;
-use stiction::commands::switch::{self, SwitchReport};
 use stiction::plot::{self, Panel, Series};
-use stiction::scene::{self, Loaded, Scene, SwitchScene};
+use stiction_model::keys::Kind;
+use stiction_model::laws::LawRegistry;
+use stiction_model::scene::Scene;
+use stiction_model::spec::SwitchSpec;
+use stiction_model::switch::{SwitchModel, SwitchResult};
+use stiction_model::{Accuracy, Silent};
 
-fn solve(s: &SwitchScene, mode: Accuracy) -> Result<SwitchReport, String> {
+fn solve(s: &SwitchSpec, mode: Accuracy) -> Result<SwitchResult, String> {
     let mut s = s.clone();
-    s.accuracy = mode;
-    switch::run(
-        &Loaded {
-            file: "switch".into(),
-            scene: s,
-            is_paper: true,
-        },
-        false,
-    )
-    .map_err(|e| e.to_string())
+    s.common.accuracy = mode;
+    SwitchModel::build(&s)
+        .and_then(|m| m.run(&Silent))
+        .map_err(|e| e.to_string())
 }
 
 pub fn main() -> Result<(), String> {
-    let mut s: SwitchScene =
-        scene::parse("switch", scene::DEFAULT_SWITCH).map_err(|e| e.to_string())?;
-    s.points = 0;
-    s.validate("switch").map_err(|e| e.to_string())?;
+    let mut scene = Scene::paper(Kind::Switch);
+    scene.set_number("points", 0.0).map_err(|e| e.to_string())?;
+    let s = SwitchSpec::new(&scene, &LawRegistry::builtin()).map_err(|e| e.to_string())?;
     let reference = solve(&s, Accuracy::Reference)?;
-    let sigma = s.surface.sigma_s;
+    let sigma = s.roughness.sigma_s;
     println!("| mode | time, 10 cycles + elastic (s) | max d_e error (sigma_s) | max relative pull-out error |");
     println!("|---|---|---|---|");
     let mut pts = Vec::new();

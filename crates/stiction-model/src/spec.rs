@@ -494,6 +494,16 @@ impl<'a> Reader<'a> {
     }
 
     fn missing(&self, key: &str) -> SceneError {
+        // a required key misspelled: the key as written is what to fix
+        if let Some(typo) = self.misspelling_of(key) {
+            return SceneError::Unknown {
+                file: self.file(),
+                line: self.line(&typo),
+                kind: self.kind.to_string(),
+                hint: format!(": did you mean `{key}`?"),
+                key: typo,
+            };
+        }
         let k = keys::key(key);
         SceneError::Missing {
             file: self.file(),
@@ -506,6 +516,26 @@ impl<'a> Reader<'a> {
                 None => "required".into(),
             },
         }
+    }
+
+    /// A key of the scene in `key`'s section that no scene of this kind takes and that
+    /// reads like `key` (as [`Self::finish`] suggests), if any.
+    fn misspelling_of(&self, key: &str) -> Option<String> {
+        let (section, table) = match key.rsplit_once('.') {
+            Some((section, _)) => (section, self.scene.get(section)?.as_table()?),
+            None => ("", self.scene.tree()),
+        };
+        table
+            .keys()
+            .map(|k| match section {
+                "" => k.clone(),
+                s => format!("{s}.{k}"),
+            })
+            .filter(|k| !keys::of(self.kind).any(|f| f.key == k))
+            .map(|k| (strsim::jaro_winkler(&k, key), k))
+            .filter(|(s, _)| *s > 0.85)
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, k)| k)
     }
 
     fn registry_key(&self, key: &str) -> &'static Key {

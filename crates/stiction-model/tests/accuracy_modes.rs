@@ -1,40 +1,34 @@
 //! The accuracy modes hold where users go: random switch scenes drawn by a seeded
 //! generator over the documented domains (plausible MEMS contacts and the wide ranges a
-//! scene accepts), every adhesion law, both plasticity laws, both readings of eq 1, and a
-//! user law that declares no kinks. Each mode is measured against the accurate mode, the
-//! accurate mode against the reference; the pull-out does not depend on the curve asked
-//! for; d_e never jumps up between cycles. The distribution over many more scenes is in
-//! docs/performance.md (`cargo xtask accuracy`).
+//! scene accepts), every adhesion law, every plasticity law, both readings of eq 1, both
+//! reload rules, and a user law that declares no kinks. Each mode is measured against the
+//! accurate mode, the accurate mode against the reference; the pull-out does not depend on
+//! the curve asked for; d_e never jumps up between cycles. The distribution over many more
+//! scenes is in docs/performance.md (`cargo xtask accuracy`).
 
-#[path = "../examples/custom_law.rs"]
+// The user law of the workspace's example, which names the crates as the root crate
+// `stiction` re-exports them: the same re-exports are this crate's.
+extern crate stiction_model as stiction;
+
+#[path = "../../../examples/custom_law.rs"]
 #[allow(dead_code)]
 mod custom_law;
 
-use stiction::accuracy::Accuracy;
-use stiction::commands::switch::{self, SwitchReport};
-use stiction::scene::{Loaded, Scene, SwitchScene};
-use stiction::scenegen::{self, Domain, Rng};
+use stiction_model::laws::LawRegistry;
+use stiction_model::scenegen::{self, Domain, Rng};
+use stiction_model::spec::SwitchSpec;
+use stiction_model::switch::{SwitchModel, SwitchResult};
+use stiction_model::{Accuracy, ModelError, Silent};
 
-fn run(
-    s: &SwitchScene,
-    accuracy: Accuracy,
-    points: usize,
-) -> Result<SwitchReport, stiction::Error> {
+fn run(s: &SwitchSpec, accuracy: Accuracy, points: usize) -> Result<SwitchResult, ModelError> {
     let mut s = s.clone();
-    s.accuracy = accuracy;
-    s.points = points;
-    switch::run(
-        &Loaded {
-            file: "generated".into(),
-            scene: s,
-            is_paper: false,
-        },
-        false,
-    )
+    s.common.accuracy = accuracy;
+    s.common.points = points;
+    SwitchModel::build(&s)?.run(&Silent)
 }
 
 /// Worst (d_e error in sigma_s, pull-out error relative with the 1e-9 K_s d0 floor).
-fn errors(a: &SwitchReport, b: &SwitchReport, sigma: f64) -> (f64, f64) {
+fn errors(a: &SwitchResult, b: &SwitchResult, sigma: f64) -> (f64, f64) {
     let floor = 1e-9 * a.restoring_pressure / a.contact_area_fraction;
     a.cycles
         .iter()
@@ -50,17 +44,23 @@ fn errors(a: &SwitchReport, b: &SwitchReport, sigma: f64) -> (f64, f64) {
         })
 }
 
-fn scenes(domain: Domain, seed: u64, n: usize) -> Vec<SwitchScene> {
+fn scenes(domain: Domain, seed: u64, n: usize) -> Vec<SwitchSpec> {
+    let registry = LawRegistry::builtin();
     let mut rng = Rng::new(seed);
     let mut out = Vec::new();
     while out.len() < n {
-        let mut s = scenegen::switch_scene(&mut rng, domain);
-        s.cycles = 2;
-        if s.validate("generated").is_ok() {
-            out.push(s);
+        let mut scene = scenegen::switch_scene(&mut rng, domain, "generated");
+        scene.set_number("cycles", 2.0).unwrap();
+        if let Ok(spec) = SwitchSpec::new(&scene, &registry) {
+            out.push(spec);
         }
     }
     out
+}
+
+/// The scene as a file, to rerun a failing one alone.
+fn toml(s: &SwitchSpec) -> String {
+    scenegen::to_toml(&s.common.scene)
 }
 
 #[test]
@@ -68,9 +68,13 @@ fn every_mode_meets_its_targets_on_random_mems_scenes() {
     let mut failures = Vec::new();
     let mut worst = [(0.0f64, 0.0f64); 3];
     for (i, s) in scenes(Domain::Mems, 2026, 16).into_iter().enumerate() {
-        let sigma = s.surface.sigma_s;
-        let accurate = run(&s, Accuracy::Accurate, 0)
-            .unwrap_or_else(|e| panic!("scene {i}: a plausible MEMS scene failed: {e}\n{s:#?}"));
+        let sigma = s.roughness.sigma_s;
+        let accurate = run(&s, Accuracy::Accurate, 0).unwrap_or_else(|e| {
+            panic!(
+                "scene {i}: a plausible MEMS scene failed: {e}\n{}",
+                toml(&s)
+            )
+        });
         for (k, mode) in [Accuracy::Balanced, Accuracy::Fast].into_iter().enumerate() {
             let r = run(&s, mode, 0).unwrap_or_else(|e| panic!("scene {i} {mode}: {e}"));
             let t = mode.targets();
@@ -78,7 +82,8 @@ fn every_mode_meets_its_targets_on_random_mems_scenes() {
             worst[k + 1] = (worst[k + 1].0.max(de), worst[k + 1].1.max(po));
             if de > t.d_e_tolerance_sigma || po > t.pull_out_tolerance {
                 failures.push(format!(
-                    "scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}"
+                    "scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}\n{}",
+                    toml(&s)
                 ));
             }
             // the verdict may only differ where the ratio is within the mode's tolerance of 1
@@ -105,7 +110,8 @@ fn every_mode_meets_its_targets_on_random_mems_scenes() {
             let t = Accuracy::Accurate.targets();
             if de > t.d_e_tolerance_sigma || po > t.pull_out_tolerance {
                 failures.push(format!(
-                    "scene {i} accurate: d_e {de:e} sigma, pull-out {po:e}"
+                    "scene {i} accurate: d_e {de:e} sigma, pull-out {po:e}\n{}",
+                    toml(&s)
                 ));
             }
         }
@@ -126,20 +132,24 @@ fn modes_meet_their_targets_on_the_wide_ranges_where_the_model_has_an_answer() {
             continue; // e.g. adhesion stronger than any compression: an error, not a number
         };
         answered += 1;
-        let sigma = s.surface.sigma_s;
+        let sigma = s.roughness.sigma_s;
         for w in accurate.cycles.windows(2) {
             let rise = (w[1].d_e - w[0].d_e) / sigma;
             assert!(rise < 1e-3, "wide scene {i}: d_e rose by {rise} sigma_s");
         }
         for mode in [Accuracy::Balanced, Accuracy::Fast] {
             let r = run(&s, mode, 0).unwrap_or_else(|e| {
-                panic!("wide scene {i} {mode} failed where accurate did not: {e}")
+                panic!(
+                    "wide scene {i} {mode} failed where accurate did not: {e}\n{}",
+                    toml(&s)
+                )
             });
             let t = mode.targets();
             let (de, po) = errors(&accurate, &r, sigma);
             if de > t.d_e_tolerance_sigma || po > t.pull_out_tolerance {
                 failures.push(format!(
-                    "wide scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}"
+                    "wide scene {i} {mode}: d_e {de:e} sigma, pull-out {po:e}\n{}",
+                    toml(&s)
                 ));
             }
         }
@@ -171,9 +181,9 @@ fn the_pull_out_does_not_depend_on_the_curves_written() {
 /// the fast and balanced modes stay within their targets of the accurate one.
 #[test]
 fn a_user_law_without_declared_kinks_meets_the_targets() {
-    use stiction::contact_core::{paper, SurfaceLaw};
-    use stiction::gw_surface::{GreenwoodWilliamson, Roughness};
-    use stiction::switch_1d::{run_cycles, CycleOptions, Impact, ImpactFilm};
+    use stiction_model::contact_core::{paper, SurfaceLaw};
+    use stiction_model::gw_surface::{GreenwoodWilliamson, Roughness};
+    use stiction_model::switch_1d::{run_cycles, CycleOptions, Impact, ImpactFilm};
     let rough = Roughness {
         sigma_s: paper::SIGMA_S,
         asperity_density: paper::ASPERITY_DENSITY,
@@ -195,7 +205,7 @@ fn a_user_law_without_declared_kinks_meets_the_targets() {
             cycles: 2,
             unloading_points: 0,
             loading_points: 0,
-            precision: mode.precision(16_880.0),
+            precision: mode.precision(),
             ..Default::default()
         };
         run_cycles(&gw, gw.virgin(), impact, opts, &mut |_| {}).unwrap()

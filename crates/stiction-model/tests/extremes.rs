@@ -1,37 +1,38 @@
 //! The whole chain at the extremes of its domain: each case gives a finite result that
 //! keeps the model's invariants, or a clear error (never NaN, never a panic).
 
-use stiction::accuracy::Accuracy;
-use stiction::commands::switch::{self, SwitchReport};
-use stiction::scene::{self, AsperityScene, CounterKind, Loaded, Scene, SwitchScene};
-use stiction::switch_1d::SwitchError;
-use stiction::Error;
+use stiction_model::asperity;
+use stiction_model::keys::Kind;
+use stiction_model::laws::LawRegistry;
+use stiction_model::scene::Scene;
+use stiction_model::spec::{AsperitySpec, SwitchSpec};
+use stiction_model::switch::{SwitchModel, SwitchResult};
+use stiction_model::switch_1d::SwitchError;
+use stiction_model::{ModelError, Silent};
 
-fn switch_scene() -> SwitchScene {
-    let mut s: SwitchScene = scene::parse("test", scene::DEFAULT_SWITCH).unwrap();
-    s.cycles = 3;
-    s.points = 0;
-    s.elastic_comparison = false;
-    s.accuracy = Accuracy::Balanced;
+fn switch_scene() -> Scene {
+    let mut s = Scene::paper(Kind::Switch);
+    s.set_number("cycles", 3.0).unwrap();
+    s.set_number("points", 0.0).unwrap();
+    s.set("elastic_comparison", toml::Value::Boolean(false))
+        .unwrap();
+    s.set_text("accuracy", "balanced").unwrap();
     s
 }
 
-fn run(name: &str, s: &SwitchScene) -> Result<SwitchReport, Error> {
-    let mut s = s.clone();
-    s.validate(name).unwrap();
-    switch::run(
-        &Loaded {
-            file: name.into(),
-            scene: s,
-            is_paper: false,
-        },
-        false,
-    )
+fn spec(name: &str, s: &Scene) -> SwitchSpec {
+    SwitchSpec::new(s, &LawRegistry::builtin()).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn run(spec: &SwitchSpec) -> Result<SwitchResult, ModelError> {
+    SwitchModel::build(spec)?.run(&Silent)
 }
 
 /// Ok with invariants, or the one error a physical scene may legitimately meet.
-fn check(name: &str, s: &SwitchScene) -> Option<SwitchReport> {
-    match run(name, s) {
+fn check(name: &str, s: &Scene) -> Option<SwitchResult> {
+    let spec = spec(name, s);
+    let sigma_s = spec.roughness.sigma_s;
+    match run(&spec) {
         Ok(r) => {
             // The deepest separation never rises; a cycle whose d_e does not go below it
             // leaves the history unchanged, so the next cycle repeats it exactly. d_e itself
@@ -51,9 +52,9 @@ fn check(name: &str, s: &SwitchScene) -> Option<SwitchReport> {
                 );
                 if c.d_e >= deepest {
                     assert!(
-                        c.d_e - deepest < 1e-3 * s.surface.sigma_s,
+                        c.d_e - deepest < 1e-3 * sigma_s,
                         "{name}: d_e rose by {}",
-                        (c.d_e - deepest) / s.surface.sigma_s
+                        (c.d_e - deepest) / sigma_s
                     );
                     if let Some(next) = r.cycles.get(k + 1) {
                         assert_eq!(
@@ -72,7 +73,7 @@ fn check(name: &str, s: &SwitchScene) -> Option<SwitchReport> {
         Err(e)
             if matches!(
                 e.cause(),
-                Error::Switch(SwitchError::EnergyNotAbsorbed { .. })
+                ModelError::Switch(SwitchError::EnergyNotAbsorbed { .. })
             ) =>
         {
             None
@@ -85,7 +86,7 @@ fn check(name: &str, s: &SwitchScene) -> Option<SwitchReport> {
 fn roughness_from_a_tenth_to_a_thousand_nanometres() {
     for sigma in [1e-10, 1e-9, 1e-8, 1e-7, 1e-6] {
         let mut s = switch_scene();
-        s.surface.sigma_s = sigma;
+        s.set_number("surface.sigma_s", sigma).unwrap();
         let r = check(&format!("sigma_s {sigma}"), &s).expect("0.5 J/m^2 is absorbed");
         assert!(
             r.cycles[0].d_e.abs() < 30.0 * sigma + 2e-8,
@@ -100,7 +101,7 @@ fn asperity_density_from_one_to_a_thousand_per_square_micron() {
     let mut last_de = f64::INFINITY;
     for n in [1e12, 1e13, 1e14, 1e15] {
         let mut s = switch_scene();
-        s.surface.asperity_density = n;
+        s.set_number("surface.asperity_density", n).unwrap();
         let r = check(&format!("density {n}"), &s).expect("absorbed");
         // more asperities carry the same energy with less penetration
         let d_e = r.cycles[0].d_e;
@@ -118,7 +119,7 @@ fn impact_energy_from_a_microjoule_to_ten_joules_per_square_metre() {
     let mut answered = 0;
     for e in [1e-6, 1e-3, 0.1, 1.0, 10.0] {
         let mut s = switch_scene();
-        s.switch.impact_energy = Some(e);
+        s.set_number("switch.impact_energy", e).unwrap();
         if let Some(r) = check(&format!("E_I {e}"), &s) {
             // harder impacts go deeper
             assert!(r.cycles[0].d_e < last, "E_I {e}");
@@ -133,15 +134,16 @@ fn impact_energy_from_a_microjoule_to_ten_joules_per_square_metre() {
 #[test]
 fn a_rigid_counter_surface_and_a_material_one() {
     let mut s = switch_scene();
-    s.contact.counter = CounterKind::Rigid;
+    s.set_text("contact.counter", "rigid").unwrap();
     check("rigid", &s).unwrap();
-    s.contact.counter = CounterKind::Material;
-    s.contact.counter_youngs_modulus = Some(168e9);
-    s.contact.counter_poisson_ratio = Some(0.38);
+    s.set_text("contact.counter", "material").unwrap();
+    s.set_number("contact.counter_youngs_modulus", 168e9)
+        .unwrap();
+    s.set_number("contact.counter_poisson_ratio", 0.38).unwrap();
     // a softer counter-film (Pt-like S_Y 0.6 GPa) yields first: more plasticity than Ru on Ru
-    s.contact.counter_yield_stress = Some(0.6e9);
+    s.set_number("contact.counter_yield_stress", 0.6e9).unwrap();
     let soft = check("soft counter", &s).unwrap();
-    s.contact.counter_yield_stress = None;
+    s.remove("contact.counter_yield_stress");
     let hard = check("elastic counter", &s).unwrap();
     assert!(
         soft.cycles[0].pull_out_pressure > hard.cycles[0].pull_out_pressure,
@@ -154,9 +156,11 @@ fn a_rigid_counter_surface_and_a_material_one() {
 #[test]
 fn a_material_that_never_yields_is_the_elastic_case() {
     let mut s = switch_scene();
-    s.contact.yield_stress = 1e15;
+    s.set_number("contact.yield_stress", 1e15).unwrap();
     let stiff = check("S_Y 1e15", &s).unwrap();
-    s.contact.plasticity_law = scene::PlasticityKind::Elastic;
+    s.set_text("contact.plasticity_law", "elastic").unwrap();
+    // eq 13's constants are etsion_kadin's parameters: the elastic law takes none
+    s.remove("contact.effective_radius");
     let elastic = check("elastic", &s).unwrap();
     // delta_CP at S_Y = 1e15 is beyond every interference reached: identical to elastic
     assert_eq!(stiff.cycles[0].d_e, elastic.cycles[0].d_e);
@@ -168,24 +172,15 @@ fn a_material_that_never_yields_is_the_elastic_case() {
 
 #[test]
 fn asperity_far_beyond_the_fits_stays_finite_and_warns() {
-    let mut a: AsperityScene = scene::parse("t", scene::DEFAULT_ASPERITY).unwrap();
-    a.delta_max = vec![1.5e-6];
-    a.points = 20;
-    a.validate("t").unwrap();
-    use stiction::commands::{asperity::AsperityCommand, Command};
-    let cmd = AsperityCommand {
-        scene: None,
-        delta_max: vec![],
-        format: stiction::render::Format::Json,
-        plot: None,
-    };
-    let r = cmd
-        .run(&Loaded {
-            file: "t".into(),
-            scene: a,
-            is_paper: false,
-        })
-        .unwrap();
+    let mut a = Scene::paper(Kind::Asperity);
+    a.set(
+        "delta_max",
+        toml::Value::Array(vec![toml::Value::Float(1.5e-6)]),
+    )
+    .unwrap();
+    a.set_number("points", 20.0).unwrap();
+    let spec = AsperitySpec::new(&a, &LawRegistry::builtin()).unwrap();
+    let r = asperity::run(&spec).unwrap();
     assert!(r.cases[0].pull_off_force.is_finite() && r.cases[0].extrapolated);
     assert!(r.warnings.iter().any(|w| w.code == "beyond_fit_range"));
 }
