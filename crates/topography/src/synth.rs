@@ -1,0 +1,140 @@
+//! Seeded FFT synthesis of periodic surfaces with a given spectrum.
+
+use rand_chacha::rand_core::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rustfft::num_complex::Complex;
+use serde::Serialize;
+
+use crate::error::{Result, TopographyError};
+use crate::map::HeightMap;
+use crate::moments::{fft2, wavevector};
+use crate::psd::SelfAffinePsd;
+
+/// How the Fourier amplitudes of a synthetic surface are drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Amplitudes {
+    /// Complex Gaussian coefficients of variance C(q) dq_x dq_y: a Gaussian random field,
+    /// whose moments scatter around the spectrum's from one seed to the next.
+    #[default]
+    Gaussian,
+    /// Modulus exactly sqrt(C(q) dq_x dq_y), random phase: the realisation's spectral
+    /// moments equal the lattice sums of the spectrum (heights still near-Gaussian by the
+    /// central limit theorem).
+    Fixed,
+}
+
+/// The grid and the randomness of a synthetic surface.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SynthesisOptions {
+    /// Points along x.
+    pub nx: usize,
+    /// Points along y.
+    pub ny: usize,
+    /// Spacing along x (m).
+    pub dx: f64,
+    /// Spacing along y (m).
+    pub dy: f64,
+    /// Seed of the ChaCha8 generator: the same seed gives the same surface on every platform.
+    pub seed: u64,
+    /// How amplitudes are drawn.
+    pub amplitudes: Amplitudes,
+}
+
+fn uniform(rng: &mut ChaCha8Rng) -> f64 {
+    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+fn normal(rng: &mut ChaCha8Rng) -> f64 {
+    let u1 = 1.0 - uniform(rng); // (0, 1]
+    let u2 = uniform(rng);
+    (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
+}
+
+/// A periodic surface with the isotropic spectrum `psd`, by inverse FFT of random Fourier
+/// coefficients with Hermitian symmetry (so the surface is real):
+///
+/// z(x) = sum over the lattice q = (2 pi i / L_x, 2 pi j / L_y) of h_q exp(i q.x), with
+/// <|h_q|^2> = C(|q|) dq_x dq_y (dq = 2 pi / L), so that <z^2> = sum C dq^2 ~ integral C d^2q.
+///
+/// The map is then scaled so that its rms height is **exactly** sqrt(m0) of `psd` (the
+/// lattice sum differs from the integral by the discreteness of the wavevectors near the
+/// cut-offs). Errors if the spectrum does not fit the grid: lambda_s below 2 dx or 2 dy
+/// (beyond Nyquist), lambda_l above the scan size, or no lattice wavevector in [q_l, q_s].
+pub fn synthesize(psd: &SelfAffinePsd, o: &SynthesisOptions) -> Result<HeightMap> {
+    let (nx, ny, dx, dy) = (o.nx, o.ny, o.dx, o.dy);
+    // validate the grid (a zero map is a valid map)
+    let n = nx
+        .checked_mul(ny)
+        .filter(|&n| n <= 1 << 28)
+        .ok_or_else(|| TopographyError::param("grid", format!("{nx} x {ny}"), "at most 2^28 points"))?;
+    HeightMap::new(nx, ny, dx, dy, vec![0.0; n])?;
+    let tau = 2.0 * std::f64::consts::PI;
+    let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
+    if psd.q_s > std::f64::consts::PI / dx.max(dy) * (1.0 + 1e-12) {
+        return Err(TopographyError::param(
+            "lambda_s",
+            tau / psd.q_s,
+            format!("the shortest wavelength must be at least 2 x the spacing ({:e} m)", 2.0 * dx.max(dy)),
+        ));
+    }
+    if psd.q_l < tau / lx.min(ly) * (1.0 - 1e-12) {
+        return Err(TopographyError::param(
+            "lambda_l",
+            tau / psd.q_l,
+            format!("the longest wavelength must fit in the scan ({:e} m)", lx.min(ly)),
+        ));
+    }
+    let cell = (tau / lx) * (tau / ly);
+    let mut rng = ChaCha8Rng::seed_from_u64(o.seed);
+    let mut h = vec![Complex::new(0.0, 0.0); n];
+    for j in 0..ny {
+        let qy = wavevector(j, ny, dy);
+        for i in 0..nx {
+            let k = j * nx + i;
+            let partner = ((ny - j) % ny) * nx + (nx - i) % nx;
+            if partner < k {
+                continue; // filled with its conjugate
+            }
+            let q = wavevector(i, nx, dx).hypot(qy);
+            let var = psd.c(q) * cell;
+            // draw even for var = 0 so the stream does not depend on the cut-offs
+            let (g1, g2, phase) = (normal(&mut rng), normal(&mut rng), uniform(&mut rng) * tau);
+            if var == 0.0 {
+                continue;
+            }
+            let s = var.sqrt();
+            if partner == k {
+                // self-conjugate bin: a real coefficient
+                h[k] = Complex::new(
+                    match o.amplitudes {
+                        Amplitudes::Gaussian => s * g1,
+                        Amplitudes::Fixed => s * if phase < std::f64::consts::PI { 1.0 } else { -1.0 },
+                    },
+                    0.0,
+                );
+            } else {
+                let c = match o.amplitudes {
+                    Amplitudes::Gaussian => Complex::new(g1, g2) * (s / 2f64.sqrt()),
+                    Amplitudes::Fixed => Complex::from_polar(s, phase),
+                };
+                h[k] = c;
+                h[partner] = c.conj();
+            }
+        }
+    }
+    if h.iter().all(|c| c.norm_sqr() == 0.0) {
+        return Err(TopographyError::param(
+            "spectrum",
+            format!("q in [{:e}, {:e}] rad/m", psd.q_l, psd.q_s),
+            "no wavevector of this grid lies in the band",
+        ));
+    }
+    fft2(&mut h, nx, ny, true);
+    let mut z: Vec<f64> = h.iter().map(|c| c.re).collect();
+    let mean = z.iter().sum::<f64>() / n as f64;
+    let rms = (z.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n as f64).sqrt();
+    let scale = psd.moments().m0.sqrt() / rms;
+    z.iter_mut().for_each(|v| *v = (*v - mean) * scale);
+    HeightMap::new(nx, ny, dx, dy, z)
+}
