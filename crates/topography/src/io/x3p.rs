@@ -45,12 +45,19 @@ fn entry(
     zip: &mut zip::ZipArchive<Cursor<&[u8]>>,
     name: &str,
     cap: u64,
+    exact: bool,
 ) -> Result<Option<Vec<u8>>> {
     let mut f = match zip.by_name(name) {
         Ok(f) => f,
         Err(zip::result::ZipError::FileNotFound) => return Ok(None),
         Err(e) => return Err(st.err(format!("archive entry {name}"), e.to_string())),
     };
+    if exact && f.size() != cap {
+        return Err(st.err(
+            format!("archive entry {name}"),
+            format!("{} bytes, but main.xml's grid and data type need {cap}", f.size()),
+        ));
+    }
     if f.size() > cap {
         return Err(TopographyError::TooLarge {
             path: st.path.to_path_buf(),
@@ -93,7 +100,7 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         return Err(st.err("archive", "does not start with a zip signature (PK): not an x3p file"));
     }
     let mut zip = zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| st.err("archive", e.to_string()))?;
-    let xml_bytes = entry(&st, &mut zip, "main.xml", MAX_XML.min(opts.max_bytes))?
+    let xml_bytes = entry(&st, &mut zip, "main.xml", MAX_XML.min(opts.max_bytes), false)?
         .ok_or_else(|| st.err("archive", "no main.xml entry"))?;
     let xml = std::str::from_utf8(&xml_bytes).map_err(|_| st.err("main.xml", "not UTF-8"))?;
     let doc = roxmltree::Document::parse(xml).map_err(|e| st.err("main.xml", e.to_string()))?;
@@ -163,7 +170,7 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     let n = st.check_points(nx, ny)?;
     let raw: Vec<f64> = if let Some(link) = get(&["Record3", "DataLink", "PointDataLink"]) {
         let want = n as u64 * size;
-        let data = entry(&st, &mut zip, link, want)?
+        let data = entry(&st, &mut zip, link, want, true)?
             .ok_or_else(|| st.err(field(&["Record3", "DataLink", "PointDataLink"]), format!("{link}: no such entry in the archive")))?;
         if data.len() as u64 != want {
             return Err(st.err(
@@ -214,7 +221,7 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     } else {
         return Err(st.err("main.xml Record3", "neither DataLink nor DataList: no data"));
     };
-    if let Some(valid) = entry(&st, &mut zip, "bindata/valid.bin", (n as u64).div_ceil(8))? {
+    if let Some(valid) = entry(&st, &mut zip, "bindata/valid.bin", (n as u64).div_ceil(8), false)? {
         let invalid = (0..n).filter(|&k| valid.get(k / 8).is_none_or(|b| b & (1 << (k % 8)) == 0)).count();
         if invalid > 0 {
             return Err(st.err(
