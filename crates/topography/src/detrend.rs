@@ -6,24 +6,19 @@ use crate::error::{Result, TopographyError};
 use crate::map::HeightMap;
 
 /// What is removed from the map before its statistics are taken.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case", tag = "kind", content = "order")]
 pub enum Detrend {
     /// The mean height only (order 0).
     Mean,
     /// The least-squares plane z = a + b x + c y (order 1): the default. Removes the
     /// sample's tilt in the instrument, which would otherwise count as slope.
+    #[default]
     Plane,
     /// The least-squares polynomial of total degree `order` in x and y (2 to
     /// [`Detrend::MAX_ORDER`]): removes bow or form as well (a scanner's bow, a curved
     /// electrode). It also removes the longest wavelengths of the roughness itself.
     Polynomial(usize),
-}
-
-impl Default for Detrend {
-    fn default() -> Self {
-        Detrend::Plane
-    }
 }
 
 impl Detrend {
@@ -131,14 +126,21 @@ fn cholesky_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
 pub fn detrend(map: &HeightMap, how: Detrend) -> Result<(HeightMap, DetrendSummary)> {
     let n = how.order();
     if n > Detrend::MAX_ORDER {
-        return Err(TopographyError::param("detrend order", n, format!("at most {}", Detrend::MAX_ORDER)));
+        return Err(TopographyError::param(
+            "detrend order",
+            n,
+            format!("at most {}", Detrend::MAX_ORDER),
+        ));
     }
     let (nx, ny) = (map.nx(), map.ny());
     if n >= nx.min(ny) {
         return Err(TopographyError::param(
             "detrend order",
             n,
-            format!("a {nx} x {ny} map supports a polynomial of degree below {}", nx.min(ny)),
+            format!(
+                "a {nx} x {ny} map supports a polynomial of degree below {}",
+                nx.min(ny)
+            ),
         ));
     }
     let z = map.heights();
@@ -174,7 +176,9 @@ pub fn detrend(map: &HeightMap, how: Detrend) -> Result<(HeightMap, DetrendSumma
             }
         }
     }
-    let terms: Vec<(usize, usize)> = (0..m).flat_map(|a| (0..m - a).map(move |b| (a, b))).collect();
+    let terms: Vec<(usize, usize)> = (0..m)
+        .flat_map(|a| (0..m - a).map(move |b| (a, b)))
+        .collect();
     let t = terms.len();
     let mut g = vec![0.0; t * t];
     let mut rhs = vec![0.0; t];
@@ -185,7 +189,11 @@ pub fn detrend(map: &HeightMap, how: Detrend) -> Result<(HeightMap, DetrendSumma
         rhs[p] = (0..ny).map(|j| pv[j * m + b] * rp[j * m + a]).sum();
     }
     if !cholesky_solve(&mut g, &mut rhs, t) {
-        return Err(TopographyError::param("detrend order", n, "the fit is singular on this grid"));
+        return Err(TopographyError::param(
+            "detrend order",
+            n,
+            "the fit is singular on this grid",
+        ));
     }
     let coef = rhs;
     let mean_raw = z.iter().sum::<f64>() / z.len() as f64;
@@ -272,7 +280,11 @@ mod tests {
         let (res1, _) = detrend(&map, Detrend::Plane).unwrap();
         assert!(res1.heights().iter().any(|v| v.abs() > 0.1));
         let (res2, s) = detrend(&map, Detrend::Polynomial(2)).unwrap();
-        assert!(res2.heights().iter().all(|v| v.abs() < 1e-10), "{:?}", &res2.heights()[..4]);
+        assert!(
+            res2.heights().iter().all(|v| v.abs() < 1e-10),
+            "{:?}",
+            &res2.heights()[..4]
+        );
         // slope at the centre (x = 16 - 7 = 9, y = 10 + 2 = 12)
         assert!((s.tilt_x - (0.3 + 0.1 * 9.0 + 0.02 * 12.0)).abs() < 1e-10);
         assert!((s.tilt_y - (-0.1 + 0.02 * 9.0 - 0.08 * 12.0)).abs() < 1e-10);

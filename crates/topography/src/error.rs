@@ -21,7 +21,9 @@ pub enum TopographyError {
     /// The file, a part of it, or the grid it declares exceeds a size cap
     /// (`ReadOptions::max_bytes`, `ReadOptions::max_points`). Checked before the data are
     /// read or allocated.
-    #[error("{path}: {what} exceeds the cap of {limit} {unit}; raise the cap if the file is genuine")]
+    #[error(
+        "{path}: {what} exceeds the cap of {limit} {unit}; raise the cap if the file is genuine"
+    )]
     TooLarge {
         /// The file.
         path: PathBuf,
@@ -65,7 +67,9 @@ pub enum TopographyError {
         what: &'static str,
     },
     /// The format could not be told from the extension or the first bytes.
-    #[error("{path}: unknown format ({message}); name it explicitly (text, xyz, npy, gsf, gwy, x3p)")]
+    #[error(
+        "{path}: unknown format ({message}); name it explicitly (text, xyz, npy, gsf, gwy, x3p)"
+    )]
     UnknownFormat {
         /// The file.
         path: PathBuf,
@@ -92,7 +96,11 @@ pub enum TopographyError {
 }
 
 impl TopographyError {
-    pub(crate) fn param(name: &'static str, value: impl ToString, message: impl Into<String>) -> Self {
+    pub(crate) fn param(
+        name: &'static str,
+        value: impl ToString,
+        message: impl Into<String>,
+    ) -> Self {
         TopographyError::Parameter {
             name,
             value: value.to_string(),

@@ -94,7 +94,10 @@ mod tests {
         // Monte Carlo standard errors at n = 2e6 are ~3e-4 (e_det), ~1e-3 (curvature),
         // ~4e-3 (the constant): tolerances are ~3 of them.
         assert!((e_det - 1.0 / (3.0 * 3f64.sqrt())).abs() < 1e-3, "{e_det}");
-        assert!((-mean_lap / 2.0 - 8.0 / 3.0 / pi.sqrt()).abs() < 3e-3, "{mean_lap}");
+        assert!(
+            (-mean_lap / 2.0 - 8.0 / 3.0 / pi.sqrt()).abs() < 3e-3,
+            "{mean_lap}"
+        );
         let c = 1.5 - 9.0 / 16.0 * var_lap;
         assert!((c - MCCOOL_SIGMA_CONSTANT).abs() < 1.2e-2, "{c}");
         // and the formulas use them consistently

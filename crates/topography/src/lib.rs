@@ -18,13 +18,15 @@
 //! with a given spectrum. Formulas, derivations and caveats: `docs/topography.md`.
 //!
 //! ```
-//! use topography::{analyze, synthesize, AnalysisOptions, Normalization, SelfAffinePsd, SynthesisOptions};
+//! use topography::{analyze, synthesize, AnalysisOptions, Amplitudes, Normalization, SelfAffinePsd, SynthesisOptions};
 //! // a self-affine surface, H = 0.8, wavelengths 2 um down to 40 nm, rms 5 nm
 //! let psd = SelfAffinePsd::new(0.8, 2e-6, None, 40e-9, Normalization::RmsHeight(5e-9))?;
-//! let opts = SynthesisOptions { nx: 256, ny: 256, dx: 8e-9, dy: 8e-9, seed: 1, amplitudes: Default::default() };
+//! let opts = SynthesisOptions { nx: 256, ny: 256, dx: 8e-9, dy: 8e-9, seed: 1, amplitudes: Amplitudes::Fixed };
 //! let map = synthesize(&psd, &opts)?;
-//! let report = analyze(&map, &AnalysisOptions::default())?;
-//! assert!((report.rms_height / 5e-9 - 1.0).abs() < 1e-9); // synthesis is exact in rms
+//! let rms = (map.heights().iter().map(|z| z * z).sum::<f64>() / 65536.0).sqrt();
+//! assert!((rms / 5e-9 - 1.0).abs() < 1e-9); // fixed amplitudes: exact rms
+//! let report = analyze(&map, &AnalysisOptions::default())?; // removes the mean plane first
+//! assert!(report.rms_height <= rms);
 //! assert!(report.spectral.gw.sigma_s < report.rms_height); // summits spread less than heights
 //! let toml = topography::scene_fragment(&report, topography::Route::Summits)?;
 //! assert!(toml.contains("[surface]") && toml.contains("radius ="));
@@ -50,11 +52,13 @@ pub use error::{Result, TopographyError};
 pub use gw::{mccool, GwParameters, MCCOOL_SIGMA_CONSTANT};
 pub use io::{read_path, Format, Measurement, ReadOptions, Source};
 pub use map::{HeightMap, LengthUnit};
-pub use moments::{finite_difference_moments, radial_psd, spectral_moments, MomentMethod, Moments, PsdPoint};
+pub use moments::{
+    finite_difference_moments, radial_psd, spectral_moments, MomentMethod, Moments, PsdPoint,
+};
 pub use psd::{Normalization, SelfAffinePsd};
 pub use report::{
-    analyze, analyze_measurement, scene_fragment, AnalysisOptions, Grid, PlotMap, Plots, Route, ScaleRow,
-    SpectralRoute, SumSurface, SummitRoute, TopographyReport, Warning,
+    analyze, analyze_measurement, scene_fragment, AnalysisOptions, Grid, PlotMap, Plots, Route,
+    ScaleRow, SpectralRoute, SumSurface, SummitRoute, TopographyReport, Warning,
 };
 pub use stats::{histogram, shape, Histogram, Shape, EXCESS_KURTOSIS_LIMIT, SKEWNESS_LIMIT};
 pub use summits::{find_summits, summit_statistics, Summit, SummitStatistics};

@@ -47,7 +47,11 @@ impl HeightMap {
         }
         for (name, v) in [("dx", dx), ("dy", dy)] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(TopographyError::param(name, v, "a grid spacing must be finite and > 0 (m)"));
+                return Err(TopographyError::param(
+                    name,
+                    v,
+                    "a grid spacing must be finite and > 0 (m)",
+                ));
             }
         }
         if let Some(k) = z.iter().position(|v| !v.is_finite()) {
@@ -182,7 +186,11 @@ impl HeightMap {
     /// spacings by more than 1e-9 relative).
     pub fn sum_surface(&self, other: &HeightMap) -> Result<HeightMap> {
         let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
-        if self.nx != other.nx || self.ny != other.ny || !same(self.dx, other.dx) || !same(self.dy, other.dy) {
+        if self.nx != other.nx
+            || self.ny != other.ny
+            || !same(self.dx, other.dx)
+            || !same(self.dy, other.dy)
+        {
             return Err(TopographyError::param(
                 "sum surface",
                 format!(
@@ -235,7 +243,9 @@ impl LengthUnit {
             _ => match t.parse::<f64>() {
                 Ok(v) if v.is_finite() && v > 0.0 => v,
                 _ => {
-                    return Err(TopographyError::Unit { unit: s.to_string() });
+                    return Err(TopographyError::Unit {
+                        unit: s.to_string(),
+                    });
                 }
             },
         };
@@ -247,7 +257,11 @@ impl LengthUnit {
         if to_metres.is_finite() && to_metres > 0.0 {
             Ok(LengthUnit { to_metres })
         } else {
-            Err(TopographyError::param("unit factor", to_metres, "must be finite and > 0 (metres per unit)"))
+            Err(TopographyError::param(
+                "unit factor",
+                to_metres,
+                "must be finite and > 0 (metres per unit)",
+            ))
         }
     }
 }
@@ -265,10 +279,13 @@ pub(crate) fn parse_length(s: &str) -> Result<f64> {
         .map(|(k, _)| k)
         .unwrap_or(t.len());
     let (num, unit) = t.split_at(split);
-    let v: f64 = num
-        .trim()
-        .parse()
-        .map_err(|_| TopographyError::param("length", s, "expected a number with an optional unit, e.g. 1e-8 m or 10 nm"))?;
+    let v: f64 = num.trim().parse().map_err(|_| {
+        TopographyError::param(
+            "length",
+            s,
+            "expected a number with an optional unit, e.g. 1e-8 m or 10 nm",
+        )
+    })?;
     let u = if unit.trim().is_empty() {
         LengthUnit::METRE
     } else {
@@ -276,7 +293,11 @@ pub(crate) fn parse_length(s: &str) -> Result<f64> {
     };
     let m = v * u.to_metres;
     if !(m.is_finite() && m > 0.0) {
-        return Err(TopographyError::param("length", s, "must be finite and > 0"));
+        return Err(TopographyError::param(
+            "length",
+            s,
+            "must be finite and > 0",
+        ));
     }
     Ok(m)
 }

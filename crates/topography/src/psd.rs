@@ -67,18 +67,32 @@ impl SelfAffinePsd {
         norm: Normalization,
     ) -> Result<Self> {
         if !(hurst > 0.0 && hurst <= 1.0) {
-            return Err(TopographyError::param("hurst", hurst, "the Hurst exponent must be in (0, 1]"));
+            return Err(TopographyError::param(
+                "hurst",
+                hurst,
+                "the Hurst exponent must be in (0, 1]",
+            ));
         }
         let lambda_r = lambda_r.unwrap_or(lambda_l);
-        for (name, v) in [("lambda_l", lambda_l), ("lambda_r", lambda_r), ("lambda_s", lambda_s)] {
+        for (name, v) in [
+            ("lambda_l", lambda_l),
+            ("lambda_r", lambda_r),
+            ("lambda_s", lambda_s),
+        ] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(TopographyError::param(name, v, "a wavelength must be finite and > 0 (m)"));
+                return Err(TopographyError::param(
+                    name,
+                    v,
+                    "a wavelength must be finite and > 0 (m)",
+                ));
             }
         }
         if !(lambda_l >= lambda_r && lambda_r > lambda_s) {
             return Err(TopographyError::param(
                 "wavelengths",
-                format!("lambda_l = {lambda_l:e}, lambda_r = {lambda_r:e}, lambda_s = {lambda_s:e}"),
+                format!(
+                    "lambda_l = {lambda_l:e}, lambda_r = {lambda_r:e}, lambda_s = {lambda_s:e}"
+                ),
                 "need lambda_l >= lambda_r > lambda_s",
             ));
         }
@@ -97,10 +111,16 @@ impl SelfAffinePsd {
             Normalization::RmsGradient(v) => (0.5 * v * v, unit.m2, "rms gradient"),
         };
         let given = match norm {
-            Normalization::RmsHeight(v) | Normalization::RmsSlope(v) | Normalization::RmsGradient(v) => v,
+            Normalization::RmsHeight(v)
+            | Normalization::RmsSlope(v)
+            | Normalization::RmsGradient(v) => v,
         };
         if !(given.is_finite() && given > 0.0) {
-            return Err(TopographyError::param(name, given, "must be finite and > 0"));
+            return Err(TopographyError::param(
+                name,
+                given,
+                "must be finite and > 0",
+            ));
         }
         psd.c0 = target / value;
         Ok(psd)
@@ -176,8 +196,14 @@ mod tests {
 
     #[test]
     fn closed_form_moments_match_quadrature() {
-        for &(h, lr) in &[(0.8, Some(2e-6)), (0.5, None), (1.0, Some(5e-6)), (0.2, None)] {
-            let psd = SelfAffinePsd::new(h, 10e-6, lr, 20e-9, Normalization::RmsHeight(5e-9)).unwrap();
+        for &(h, lr) in &[
+            (0.8, Some(2e-6)),
+            (0.5, None),
+            (1.0, Some(5e-6)),
+            (0.2, None),
+        ] {
+            let psd =
+                SelfAffinePsd::new(h, 10e-6, lr, 20e-9, Normalization::RmsHeight(5e-9)).unwrap();
             for k in [1, 3, 5] {
                 let (a, q) = (psd.radial_integral(k), quad(&psd, k));
                 assert!((a / q - 1.0).abs() < 1e-9, "H {h} k {k}: {a} vs {q}");
@@ -192,9 +218,23 @@ mod tests {
     fn normalisations_agree() {
         let a = SelfAffinePsd::new(0.7, 4e-6, None, 40e-9, Normalization::RmsSlope(0.1)).unwrap();
         assert!((a.moments().m2.sqrt() - 0.1).abs() < 1e-14);
-        let b = SelfAffinePsd::new(0.7, 4e-6, None, 40e-9, Normalization::RmsGradient(0.1 * 2f64.sqrt())).unwrap();
+        let b = SelfAffinePsd::new(
+            0.7,
+            4e-6,
+            None,
+            40e-9,
+            Normalization::RmsGradient(0.1 * 2f64.sqrt()),
+        )
+        .unwrap();
         assert!((b.c0 / a.c0 - 1.0).abs() < 1e-12);
-        let c = SelfAffinePsd::new(0.7, 4e-6, None, 40e-9, Normalization::RmsHeight(a.moments().m0.sqrt())).unwrap();
+        let c = SelfAffinePsd::new(
+            0.7,
+            4e-6,
+            None,
+            40e-9,
+            Normalization::RmsHeight(a.moments().m0.sqrt()),
+        )
+        .unwrap();
         assert!((c.c0 / a.c0 - 1.0).abs() < 1e-12);
     }
 

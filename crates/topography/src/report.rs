@@ -28,7 +28,7 @@ pub struct AnalysisOptions {
     pub plot_side: usize,
     /// Bins of the height histograms (default 40).
     pub histogram_bins: usize,
-    /// Logarithmic bins of the radially averaged PSD (default 40).
+    /// Logarithmic bins of the radially averaged PSD (default 40; 0 skips the PSD and its FFT).
     pub psd_bins: usize,
 }
 
@@ -122,7 +122,8 @@ impl SummitRoute {
     }
 }
 
-const SPECTRAL_METHOD: &str = "McCool (1986) from the profile moments m0, m2, m4 of the equivalent isotropic \
+const SPECTRAL_METHOD: &str =
+    "McCool (1986) from the profile moments m0, m2, m4 of the equivalent isotropic \
 surface (finite differences on the grid, averaged over directions): density m4/(6 pi sqrt(3) m2), \
 radius 0.375 sqrt(pi/m4), sigma_s sqrt(1 - 0.8968/alpha) sqrt(m0), offset 4 sqrt(m0/(pi alpha))";
 const SUMMIT_METHOD: &str = "summits = interior grid points higher than their 8 neighbours (ties broken by raster \
@@ -315,15 +316,25 @@ fn tiles_row(map: &HeightMap, d: usize, how: Detrend) -> Option<ScaleRow> {
     let first = cores.first()?;
     let n = cores.len() as f64;
     let spectral = mean_gw(&cores.iter().map(|c| c.spectral).collect::<Vec<_>>());
-    let with: Vec<GwParameters> = cores.iter().filter_map(|c| c.summits.as_ref().map(|s| s.gw)).collect();
+    let with: Vec<GwParameters> = cores
+        .iter()
+        .filter_map(|c| c.summits.as_ref().map(|s| s.gw))
+        .collect();
     let mut r = row(first, d, cores.len());
     r.rms_height = cores.iter().map(|c| c.moments.rms_height()).sum::<f64>() / n;
     r.m2 = cores.iter().map(|c| c.moments.m2).sum::<f64>() / n;
     r.m4 = cores.iter().map(|c| c.moments.m4).sum::<f64>() / n;
     r.alpha = cores.iter().map(|c| c.moments.alpha()).sum::<f64>() / n;
     r.spectral = spectral;
-    r.summits = if with.len() == cores.len() { Some(mean_gw(&with)) } else { None };
-    r.summit_count = cores.iter().map(|c| c.summits.as_ref().map_or(0, |s| s.count)).sum();
+    r.summits = if with.len() == cores.len() {
+        Some(mean_gw(&with))
+    } else {
+        None
+    };
+    r.summit_count = cores
+        .iter()
+        .map(|c| c.summits.as_ref().map_or(0, |s| s.count))
+        .sum();
     Some(r)
 }
 
@@ -469,7 +480,10 @@ pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyRepo
     }
     if let (Some(s1), Some(s2)) = (sampling.first(), sampling.get(1)) {
         if let (Some(a), Some(b)) = (s1.summits, s2.summits) {
-            let (dn, dr) = (rel_change(a.asperity_density, b.asperity_density), rel_change(a.radius, b.radius));
+            let (dn, dr) = (
+                rel_change(a.asperity_density, b.asperity_density),
+                rel_change(a.radius, b.radius),
+            );
             if dn.max(dr) > 0.25 {
                 warn(
                     "sampling_dependent",
@@ -524,7 +538,9 @@ pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyRepo
 
     let (summit_list, _) = find_summits(&c.map);
     let sh: Vec<f64> = summit_list.iter().map(|s| s.height).collect();
-    let (sm, ss) = summits.as_ref().map_or((0.0, 0.0), |s| (s.gw.offset, s.gw.sigma_s));
+    let (sm, ss) = summits
+        .as_ref()
+        .map_or((0.0, 0.0), |s| (s.gw.offset, s.gw.sigma_s));
     let pic = c.map.downsample(opts.plot_side);
     let plots = Plots {
         height_map: PlotMap {
@@ -536,7 +552,11 @@ pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyRepo
         },
         summit_heights: histogram(&sh, opts.histogram_bins, sm, ss),
         heights: histogram(c.map.heights(), opts.histogram_bins, 0.0, m.rms_height()),
-        psd: radial_psd(&c.map, opts.psd_bins),
+        psd: if opts.psd_bins == 0 {
+            Vec::new()
+        } else {
+            radial_psd(&c.map, opts.psd_bins)
+        },
     };
 
     Ok(TopographyReport {
@@ -579,7 +599,10 @@ pub enum Route {
 /// Errors if `route` is `Summits` and the map had fewer than 2 summits.
 pub fn scene_fragment(report: &TopographyReport, route: Route) -> Result<String> {
     let (gw, method) = match route {
-        Route::Spectral => (report.spectral.gw, "spectral route (McCool 1986 from m0, m2, m4)"),
+        Route::Spectral => (
+            report.spectral.gw,
+            "spectral route (McCool 1986 from m0, m2, m4)",
+        ),
         Route::Summits => match &report.summits {
             Some(s) => (s.gw, "summit route (8-neighbour maxima of the grid)"),
             None => {
@@ -597,8 +620,14 @@ pub fn scene_fragment(report: &TopographyReport, route: Route) -> Result<String>
     };
     let g = &report.grid;
     let mut s = String::new();
-    let src = report.source.as_ref().map_or("a height map".to_string(), |s| s.path.clone());
-    let _ = writeln!(s, "# GW parameters of {src} (stiction topography), {method}.");
+    let src = report
+        .source
+        .as_ref()
+        .map_or("a height map".to_string(), |s| s.path.clone());
+    let _ = writeln!(
+        s,
+        "# GW parameters of {src} (stiction topography), {method}."
+    );
     let _ = writeln!(
         s,
         "# Grid {} x {} at dx = {:.4e} m, dy = {:.4e} m (scan {:.4e} x {:.4e} m); {} of degree {} removed.",
@@ -609,7 +638,11 @@ pub fn scene_fragment(report: &TopographyReport, route: Route) -> Result<String>
         "# rms height {:.4e} m (all points); sigma_s below is the std of the summit heights, whose mean plane",
         report.rms_height
     );
-    let _ = writeln!(s, "# lies {:.4e} m above the mean plane: the model measures separation from it.", gw.offset);
+    let _ = writeln!(
+        s,
+        "# lies {:.4e} m above the mean plane: the model measures separation from it.",
+        gw.offset
+    );
     if let Some((name, o)) = other {
         let _ = writeln!(
             s,
@@ -617,7 +650,10 @@ pub fn scene_fragment(report: &TopographyReport, route: Route) -> Result<String>
             o.sigma_s, o.asperity_density, o.radius
         );
     }
-    let _ = writeln!(s, "# GW parameters depend on the sampling interval (docs/topography.md); coarsened:");
+    let _ = writeln!(
+        s,
+        "# GW parameters depend on the sampling interval (docs/topography.md); coarsened:"
+    );
     for r in report.sampling.iter().skip(1) {
         let p = match route {
             Route::Spectral => Some(r.spectral),
@@ -634,14 +670,29 @@ pub fn scene_fragment(report: &TopographyReport, route: Route) -> Result<String>
     for wng in &report.warnings {
         let _ = writeln!(s, "# warning [{}]: {}", wng.code, wng.message);
     }
-    let _ = writeln!(s, "# For two rough surfaces, analyse their sum surface (or combine the moments).");
+    let _ = writeln!(
+        s,
+        "# For two rough surfaces, analyse their sum surface (or combine the moments)."
+    );
     let _ = writeln!(s);
     let _ = writeln!(s, "[surface]");
-    let _ = writeln!(s, "sigma_s = {:e}          # std. dev. of summit heights (m)", gw.sigma_s);
-    let _ = writeln!(s, "asperity_density = {:e} # N (1/m^2)", gw.asperity_density);
+    let _ = writeln!(
+        s,
+        "sigma_s = {:e}          # std. dev. of summit heights (m)",
+        gw.sigma_s
+    );
+    let _ = writeln!(
+        s,
+        "asperity_density = {:e} # N (1/m^2)",
+        gw.asperity_density
+    );
     let _ = writeln!(s);
     let _ = writeln!(s, "[contact]");
-    let _ = writeln!(s, "radius = {:e}           # summit radius R (m), 1 / mean summit curvature", gw.radius);
+    let _ = writeln!(
+        s,
+        "radius = {:e}           # summit radius R (m), 1 / mean summit curvature",
+        gw.radius
+    );
     Ok(s)
 }
 

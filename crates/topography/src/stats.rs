@@ -79,7 +79,8 @@ pub const EXCESS_KURTOSIS_LIMIT: f64 = 1.0;
 impl Shape {
     /// Whether this shape is within the Gaussian limits.
     pub fn is_near_gaussian(&self) -> bool {
-        self.skewness.abs() <= SKEWNESS_LIMIT && (self.kurtosis - 3.0).abs() <= EXCESS_KURTOSIS_LIMIT
+        self.skewness.abs() <= SKEWNESS_LIMIT
+            && (self.kurtosis - 3.0).abs() <= EXCESS_KURTOSIS_LIMIT
     }
 }
 
@@ -115,7 +116,9 @@ pub fn histogram(x: &[f64], bins: usize, mean: f64, std: f64) -> Histogram {
     let bins = bins.max(1);
     let (lo, hi) = x
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
     if x.is_empty() || !(hi > lo) {
         return Histogram {
             centres: Vec::new(),

@@ -57,7 +57,11 @@ pub fn find_summits(map: &HeightMap) -> (Vec<Summit>, usize) {
     let mut out = Vec::new();
     let mut ties = 0usize;
     for j in 1..ny - 1 {
-        let (up, row, down) = (&z[(j - 1) * nx..j * nx], &z[j * nx..(j + 1) * nx], &z[(j + 1) * nx..(j + 2) * nx]);
+        let (up, row, down) = (
+            &z[(j - 1) * nx..j * nx],
+            &z[j * nx..(j + 1) * nx],
+            &z[(j + 1) * nx..(j + 2) * nx],
+        );
         for i in 1..nx - 1 {
             let c = row[i];
             // preceding neighbours (raster order): the row above and the left point
@@ -146,7 +150,11 @@ mod tests {
         assert_eq!(s.len(), (cells - 1) * (cells - 1));
         assert!(s.iter().all(|p| p.i % per == 0 && p.j % per == 0));
         let curv = 4.0 * a / (h * h) * (k * h / 2.0).sin().powi(2);
-        assert!(s.iter().all(|p| (p.height - 2.0 * a).abs() < 1e-20 && (p.curvature / curv - 1.0).abs() < 1e-9));
+        assert!(
+            s.iter()
+                .all(|p| (p.height - 2.0 * a).abs() < 1e-20
+                    && (p.curvature / curv - 1.0).abs() < 1e-9)
+        );
         // by symmetry, points at equal distance from a crest tie: cos is even
         assert!(ties > 0);
         let st = summit_statistics(&map).unwrap();
@@ -167,6 +175,8 @@ mod tests {
         // a plateau at the edge is not a summit
         let mut z = vec![0.0; 25];
         z[2] = 1.0;
-        assert!(find_summits(&HeightMap::new(5, 5, 1.0, 1.0, z).unwrap()).0.is_empty());
+        assert!(find_summits(&HeightMap::new(5, 5, 1.0, 1.0, z).unwrap())
+            .0
+            .is_empty());
     }
 }

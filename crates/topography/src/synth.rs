@@ -64,7 +64,9 @@ fn cell_power(psd: &SelfAffinePsd, qx: f64, qy: f64, dqx: f64, dqy: f64) -> f64 
     if qmax < psd.q_l || qmin > psd.q_s {
         return 0.0;
     }
-    let straddles = [psd.q_l, psd.q_r, psd.q_s].iter().any(|&b| qmin < b && b < qmax);
+    let straddles = [psd.q_l, psd.q_r, psd.q_s]
+        .iter()
+        .any(|&b| qmin < b && b < qmax);
     let near_origin = qmax < 6.0 * dqx.max(dqy);
     let s = if near_origin {
         // few cells carry most of m0 for a steep spectrum: resolve the cut-off finely
@@ -105,7 +107,9 @@ pub fn synthesize(psd: &SelfAffinePsd, o: &SynthesisOptions) -> Result<HeightMap
     let n = nx
         .checked_mul(ny)
         .filter(|&n| n <= 1 << 28)
-        .ok_or_else(|| TopographyError::param("grid", format!("{nx} x {ny}"), "at most 2^28 points"))?;
+        .ok_or_else(|| {
+            TopographyError::param("grid", format!("{nx} x {ny}"), "at most 2^28 points")
+        })?;
     HeightMap::new(nx, ny, dx, dy, vec![0.0; n])?;
     let tau = 2.0 * std::f64::consts::PI;
     let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
@@ -113,14 +117,20 @@ pub fn synthesize(psd: &SelfAffinePsd, o: &SynthesisOptions) -> Result<HeightMap
         return Err(TopographyError::param(
             "lambda_s",
             tau / psd.q_s,
-            format!("the shortest wavelength must be at least 2 x the spacing ({:e} m)", 2.0 * dx.max(dy)),
+            format!(
+                "the shortest wavelength must be at least 2 x the spacing ({:e} m)",
+                2.0 * dx.max(dy)
+            ),
         ));
     }
     if psd.q_l < tau / lx.min(ly) * (1.0 - 1e-12) {
         return Err(TopographyError::param(
             "lambda_l",
             tau / psd.q_l,
-            format!("the longest wavelength must fit in the scan ({:e} m)", lx.min(ly)),
+            format!(
+                "the longest wavelength must fit in the scan ({:e} m)",
+                lx.min(ly)
+            ),
         ));
     }
     let mut rng = ChaCha8Rng::seed_from_u64(o.seed);
@@ -145,7 +155,13 @@ pub fn synthesize(psd: &SelfAffinePsd, o: &SynthesisOptions) -> Result<HeightMap
                 h[k] = Complex::new(
                     match o.amplitudes {
                         Amplitudes::Gaussian => s * g1,
-                        Amplitudes::Fixed => s * if phase < std::f64::consts::PI { 1.0 } else { -1.0 },
+                        Amplitudes::Fixed => {
+                            s * if phase < std::f64::consts::PI {
+                                1.0
+                            } else {
+                                -1.0
+                            }
+                        }
                     },
                     0.0,
                 );

@@ -14,7 +14,8 @@ fn sample_map() -> HeightMap {
     let z = (0..nx * ny)
         .map(|k| {
             let (i, j) = ((k % nx) as f64, (k / nx) as f64);
-            1e-9 * ((0.7 * i).sin() * (1.3 * j).cos() + 0.01 * i * j - 0.3) * (1.0 + 1e-3 * k as f64)
+            1e-9 * ((0.7 * i).sin() * (1.3 * j).cos() + 0.01 * i * j - 0.3)
+                * (1.0 + 1e-3 * k as f64)
         })
         .collect();
     HeightMap::new(nx, ny, 12.5e-9, 7.5e-9, z).unwrap()
@@ -46,7 +47,10 @@ fn err_of(path: &Path, opts: &ReadOptions) -> String {
         Ok(m) => panic!("{} was accepted: {:?}", path.display(), m.source),
         Err(e) => {
             let s = e.to_string();
-            assert!(s.contains(&path.display().to_string()), "error does not name the file: {s}");
+            assert!(
+                s.contains(&path.display().to_string()),
+                "error does not name the file: {s}"
+            );
             s
         }
     }
@@ -54,7 +58,10 @@ fn err_of(path: &Path, opts: &ReadOptions) -> String {
 
 fn assert_close_maps(a: &HeightMap, b: &HeightMap, rel: f64) {
     assert_eq!((a.nx(), a.ny()), (b.nx(), b.ny()));
-    assert!((a.dx() / b.dx() - 1.0).abs() < 1e-12 && (a.dy() / b.dy() - 1.0).abs() < 1e-12, "spacing");
+    assert!(
+        (a.dx() / b.dx() - 1.0).abs() < 1e-12 && (a.dy() / b.dy() - 1.0).abs() < 1e-12,
+        "spacing"
+    );
     let scale = b.heights().iter().fold(0.0f64, |m, v| m.max(v.abs()));
     for (x, y) in a.heights().iter().zip(b.heights()) {
         assert!((x - y).abs() <= rel * scale, "{x} vs {y}");
@@ -70,7 +77,8 @@ fn every_format_round_trips_a_map() {
         let mut opts = with_units();
         if format == Format::Npy {
             // npy has no units and one spacing: give them
-            let sq = HeightMap::new(map.nx(), map.ny(), 5e-9, 5e-9, map.heights().to_vec()).unwrap();
+            let sq =
+                HeightMap::new(map.nx(), map.ny(), 5e-9, 5e-9, map.heights().to_vec()).unwrap();
             std::fs::write(&path, encode(&sq, format).unwrap()).unwrap();
             opts.spacing = Some(5e-9);
             opts.height_unit = Some(LengthUnit::METRE);
@@ -94,11 +102,23 @@ fn formats_are_recognised_by_magic_without_an_extension() {
     let map = sample_map();
     for format in [Format::Gsf, Format::Gwy, Format::X3p] {
         let p = write(&format!("noext-{format}"), &encode(&map, format).unwrap());
-        assert_eq!(read_path(&p, &ReadOptions::default()).unwrap().source.format, format);
+        assert_eq!(
+            read_path(&p, &ReadOptions::default())
+                .unwrap()
+                .source
+                .format,
+            format
+        );
     }
     // a text file saying it holds xyz columns
     let p = write("noext-xyz", encode(&map, Format::Xyz).unwrap().as_slice());
-    assert_eq!(read_path(&p, &ReadOptions::default()).unwrap().source.format, Format::Xyz);
+    assert_eq!(
+        read_path(&p, &ReadOptions::default())
+            .unwrap()
+            .source
+            .format,
+        Format::Xyz
+    );
 }
 
 #[test]
@@ -110,7 +130,11 @@ fn text_header_conventions_and_gwyddion_export() {
     // Gwyddion's ASCII export: scan size and value units
     let t = "# Channel: Height\n# Width: 3.000 µm\n# Height: 1.500 µm\n# Value units: m\n\
              1e-9\t2e-9\t3e-9\n4e-9\t5e-9\t6e-9\n7e-9\t8e-9\t9e-9\n";
-    let m = read_path(write("gwyexport.txt", t.as_bytes()), &ReadOptions::default()).unwrap();
+    let m = read_path(
+        write("gwyexport.txt", t.as_bytes()),
+        &ReadOptions::default(),
+    )
+    .unwrap();
     assert!((m.map.dx() - 1e-6).abs() < 1e-18 && (m.map.dy() - 0.5e-6).abs() < 1e-18);
     // comma-separated, spacing and unit from the options
     let t = "1, 2, 3\n4, 5, 6\n7, 8, 9\n";
@@ -130,12 +154,19 @@ fn text_header_conventions_and_gwyddion_export() {
 
 #[test]
 fn xyz_in_any_order_with_units() {
-    let mut lines = vec!["# xy_unit = um".to_string(), "# height_unit = nm".to_string()];
+    let mut lines = vec![
+        "# xy_unit = um".to_string(),
+        "# height_unit = nm".to_string(),
+    ];
     for k in (0..12).rev() {
         let (i, j) = (k % 4, k / 4);
         lines.push(format!("{} {} {}", 0.5 * i as f64, 0.25 * j as f64, k));
     }
-    let m = read_path(write("order.xyz", lines.join("\n").as_bytes()), &ReadOptions::default()).unwrap();
+    let m = read_path(
+        write("order.xyz", lines.join("\n").as_bytes()),
+        &ReadOptions::default(),
+    )
+    .unwrap();
     assert_eq!((m.map.nx(), m.map.ny()), (4, 3));
     assert!((m.map.dx() - 0.5e-6).abs() < 1e-18 && (m.map.dy() - 0.25e-6).abs() < 1e-18);
     assert!((m.map.at(3, 2) - 11e-9).abs() < 1e-20);
@@ -207,7 +238,15 @@ fn x3p_with_an_inline_data_list_and_integer_data() {
     assert!((m.map.at(2, 2) - (5e-9 + 8.0 * 1e-10)).abs() < 1e-20);
     assert_eq!((m.map.dx(), m.map.dy()), (2e-8, 3e-8));
     // an empty Datum is an invalid point
-    let data: String = (0..9).map(|k| if k == 4 { "<Datum/>".to_string() } else { format!("<Datum>{k}</Datum>") }).collect();
+    let data: String = (0..9)
+        .map(|k| {
+            if k == 4 {
+                "<Datum/>".to_string()
+            } else {
+                format!("<Datum>{k}</Datum>")
+            }
+        })
+        .collect();
     let bytes = zip_of(&[("main.xml", xml.replace("{DATA}", &data).as_bytes())]);
     let e = err_of(&write("hole.x3p", &bytes), &ReadOptions::default());
     assert!(e.contains("not finite"), "{e}");
@@ -215,7 +254,8 @@ fn x3p_with_an_inline_data_list_and_integer_data() {
 
 fn zip_of(entries: &[(&str, &[u8])]) -> Vec<u8> {
     let mut w = zip::ZipWriter::new(Cursor::new(Vec::new()));
-    let opt = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    let opt = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
     for (name, data) in entries {
         w.start_file(*name, opt).unwrap();
         w.write_all(data).unwrap();
@@ -239,15 +279,47 @@ fn unzip(bytes: &[u8]) -> Vec<(String, Vec<u8>)> {
 fn bad_text_files() {
     let o = ReadOptions::default();
     let cases: &[(&str, &str, &str)] = &[
-        ("word.txt", "# spacing = 1 nm\n# height_unit = nm\n1 2 3\n4 x 6\n7 8 9\n", "line 4, column 2"),
-        ("ragged.txt", "# spacing = 1 nm\n# height_unit = nm\n1 2 3\n4 5\n7 8 9\n", "line 4"),
-        ("nan.txt", "# spacing = 1 nm\n# height_unit = nm\n1 2 3\n4 NaN 6\n7 8 9\n", "not a finite height"),
+        (
+            "word.txt",
+            "# spacing = 1 nm\n# height_unit = nm\n1 2 3\n4 x 6\n7 8 9\n",
+            "line 4, column 2",
+        ),
+        (
+            "ragged.txt",
+            "# spacing = 1 nm\n# height_unit = nm\n1 2 3\n4 5\n7 8 9\n",
+            "line 4",
+        ),
+        (
+            "nan.txt",
+            "# spacing = 1 nm\n# height_unit = nm\n1 2 3\n4 NaN 6\n7 8 9\n",
+            "not a finite height",
+        ),
         ("empty.txt", "# spacing = 1 nm\n", "no data lines"),
-        ("nospacing.txt", "# height_unit = nm\n1 2 3\n4 5 6\n7 8 9\n", "--spacing"),
-        ("nounit.txt", "# spacing = 1 nm\n1 2 3\n4 5 6\n7 8 9\n", "--height-unit"),
-        ("badunit.txt", "# spacing = 1 furlong\n1 2 3\n4 5 6\n7 8 9\n", "line 1"),
-        ("small.txt", "# spacing = 1 nm\n# height_unit = nm\n1 2\n3 4\n", "at least 3 x 3"),
-        ("emptyfield.csv", "# spacing = 1 nm\n# height_unit = nm\n1,,3\n4,5,6\n7,8,9\n", "empty field"),
+        (
+            "nospacing.txt",
+            "# height_unit = nm\n1 2 3\n4 5 6\n7 8 9\n",
+            "--spacing",
+        ),
+        (
+            "nounit.txt",
+            "# spacing = 1 nm\n1 2 3\n4 5 6\n7 8 9\n",
+            "--height-unit",
+        ),
+        (
+            "badunit.txt",
+            "# spacing = 1 furlong\n1 2 3\n4 5 6\n7 8 9\n",
+            "line 1",
+        ),
+        (
+            "small.txt",
+            "# spacing = 1 nm\n# height_unit = nm\n1 2\n3 4\n",
+            "at least 3 x 3",
+        ),
+        (
+            "emptyfield.csv",
+            "# spacing = 1 nm\n# height_unit = nm\n1,,3\n4,5,6\n7,8,9\n",
+            "empty field",
+        ),
     ];
     for (name, text, what) in cases {
         let e = err_of(&write(name, text.as_bytes()), &o);
@@ -275,17 +347,29 @@ fn bad_xyz_files() {
         }
         s
     };
-    let e = err_of(&write("missing.xyz", grid(Some(6), false, false).as_bytes()), &o);
+    let e = err_of(
+        &write("missing.xyz", grid(Some(6), false, false).as_bytes()),
+        &o,
+    );
     assert!(e.contains("missing or repeated"), "{e}");
     let mut s = grid(Some(6), false, false);
     s.push_str("1 1 99\n"); // point (1,1) twice, (2,1) missing
     let e = err_of(&write("dup.xyz", s.as_bytes()), &o);
     assert!(e.contains("repeats line"), "{e}");
-    let e = err_of(&write("irregular.xyz", grid(None, false, true).as_bytes()), &o);
+    let e = err_of(
+        &write("irregular.xyz", grid(None, false, true).as_bytes()),
+        &o,
+    );
     assert!(e.contains("regular grid"), "{e}");
     let e = err_of(&write("cols.xyz", format!("{head}1 2\n").as_bytes()), &o);
     assert!(e.contains("three columns"), "{e}");
-    let e = err_of(&write("nounits.xyz", b"0 0 1\n1 0 1\n2 0 1\n0 1 1\n1 1 1\n2 1 1\n0 2 1\n1 2 1\n2 2 1\n"), &o);
+    let e = err_of(
+        &write(
+            "nounits.xyz",
+            b"0 0 1\n1 0 1\n2 0 1\n0 1 1\n1 1 1\n2 1 1\n0 2 1\n1 2 1\n2 2 1\n",
+        ),
+        &o,
+    );
     assert!(e.contains("x/y coordinates"), "{e}");
 }
 
@@ -321,8 +405,12 @@ fn bad_npy_files() {
     // NaN data
     let z = vec![0.0, 1.0, f64::NAN, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0];
     let mut data = Vec::new();
-    z.iter().for_each(|v| data.extend_from_slice(&v.to_le_bytes()));
-    let e = err_of(&write("nan.npy", &npy_with_header("'<f8'", "(3, 3)", &data)), &o);
+    z.iter()
+        .for_each(|v| data.extend_from_slice(&v.to_le_bytes()));
+    let e = err_of(
+        &write("nan.npy", &npy_with_header("'<f8'", "(3, 3)", &data)),
+        &o,
+    );
     assert!(e.contains("not finite"), "{e}");
 }
 
@@ -343,11 +431,15 @@ fn npy_with_header(descr: &str, shape: &str, data: &[u8]) -> Vec<u8> {
 fn bad_gsf_files() {
     let good = encode(&sample_map(), Format::Gsf).unwrap();
     let o = ReadOptions::default();
-    let e = err_of(&write("magic.gsf", b"Gwyddion Simple Field 2.0\nXRes = 3\n"), &o);
+    let e = err_of(
+        &write("magic.gsf", b"Gwyddion Simple Field 2.0\nXRes = 3\n"),
+        &o,
+    );
     assert!(e.contains("magic"), "{e}");
     let e = err_of(&write("trunc.gsf", &good[..good.len() - 4]), &o);
     assert!(e.contains("truncated"), "{e}");
-    let text = String::from_utf8_lossy(&good[..good.iter().position(|&b| b == 0).unwrap()]).into_owned();
+    let text =
+        String::from_utf8_lossy(&good[..good.iter().position(|&b| b == 0).unwrap()]).into_owned();
     let data_at = (text.len() / 4 + 1) * 4;
     let rebuild = |header: &str| {
         let mut v = header.as_bytes().to_vec();
@@ -356,11 +448,26 @@ fn bad_gsf_files() {
         v.extend_from_slice(&good[data_at..]);
         v
     };
-    let e = err_of(&write("noxres.gsf", &rebuild(&text.replace("XRes = 13\n", ""))), &o);
+    let e = err_of(
+        &write("noxres.gsf", &rebuild(&text.replace("XRes = 13\n", ""))),
+        &o,
+    );
     assert!(e.contains("XRes") && e.contains("missing"), "{e}");
-    let e = err_of(&write("volts.gsf", &rebuild(&text.replace("ZUnits = m", "ZUnits = V"))), &o);
+    let e = err_of(
+        &write(
+            "volts.gsf",
+            &rebuild(&text.replace("ZUnits = m", "ZUnits = V")),
+        ),
+        &o,
+    );
     assert!(e.contains("not a length"), "{e}");
-    let e = err_of(&write("bigres.gsf", &rebuild(&text.replace("XRes = 13", "XRes = 1000000000"))), &o);
+    let e = err_of(
+        &write(
+            "bigres.gsf",
+            &rebuild(&text.replace("XRes = 13", "XRes = 1000000000")),
+        ),
+        &o,
+    );
     assert!(e.contains("exceeds the cap"), "{e}");
     let e = err_of(&write("nonul.gsf", text.as_bytes()), &o);
     assert!(e.contains("NUL"), "{e}");
@@ -368,13 +475,23 @@ fn bad_gsf_files() {
     let at = data_at + 4 * 20;
     nan[at..at + 4].copy_from_slice(&f32::NAN.to_le_bytes());
     let e = err_of(&write("nan.gsf", &nan), &o);
-    assert!(e.contains("not finite") && e.contains("column 7 row 1"), "{e}");
+    assert!(
+        e.contains("not finite") && e.contains("column 7 row 1"),
+        "{e}"
+    );
     // volts are accepted when the user gives the length per volt
     let opts = ReadOptions {
         height_unit: Some(LengthUnit::factor(2e-6).unwrap()),
         ..ReadOptions::default()
     };
-    let m = read_path(write("volts-ok.gsf", &rebuild(&text.replace("ZUnits = m", "ZUnits = V"))), &opts).unwrap();
+    let m = read_path(
+        write(
+            "volts-ok.gsf",
+            &rebuild(&text.replace("ZUnits = m", "ZUnits = V")),
+        ),
+        &opts,
+    )
+    .unwrap();
     assert_eq!(m.source.notes.len(), 1);
 }
 
@@ -388,15 +505,23 @@ fn bad_gwy_files() {
     assert!(e.contains("1.x"), "{e}");
     // every truncation is refused with a message
     for cut in (5..good.len()).step_by(7) {
-        let e = decode(Path::new("cut.gwy"), &good[..cut], Format::Gwy, &o).unwrap_err().to_string();
-        assert!(e.contains("cut.gwy") && e.contains("gwy file"), "cut at {cut}: {e}");
+        let e = decode(Path::new("cut.gwy"), &good[..cut], Format::Gwy, &o)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("cut.gwy") && e.contains("gwy file"),
+            "cut at {cut}: {e}"
+        );
     }
     // data count != xres * yres: patch xres from 13 to 12 (the i32 after "xres\0i")
     let mut bad = good.clone();
     let at = find(&good, b"xres\0i") + 6;
     bad[at] = 12;
     let e = err_of(&write("count.gwy", &bad), &o);
-    assert!(e.contains("component data of /0/data") && e.contains("12 x 9"), "{e}");
+    assert!(
+        e.contains("component data of /0/data") && e.contains("12 x 9"),
+        "{e}"
+    );
     // a component of unknown type
     let mut bad = good.clone();
     bad[find(&good, b"xres\0i") + 5] = b'z';
@@ -420,7 +545,10 @@ fn bad_gwy_files() {
         ..ReadOptions::default()
     };
     let e = err_of(&write("cap.gwy", &good), &small);
-    assert!(e.contains("the grid 13 x 9 exceeds the cap of 100 points"), "{e}");
+    assert!(
+        e.contains("the grid 13 x 9 exceeds the cap of 100 points"),
+        "{e}"
+    );
 }
 
 fn find(hay: &[u8], needle: &[u8]) -> usize {
@@ -431,42 +559,89 @@ fn find(hay: &[u8], needle: &[u8]) -> usize {
 fn bad_x3p_files() {
     let good = encode(&sample_map(), Format::X3p).unwrap();
     let entries = unzip(&good);
-    let xml = String::from_utf8(entries.iter().find(|e| e.0 == "main.xml").unwrap().1.clone()).unwrap();
-    let data = entries.iter().find(|e| e.0 == "bindata/data.bin").unwrap().1.clone();
+    let xml = String::from_utf8(
+        entries
+            .iter()
+            .find(|e| e.0 == "main.xml")
+            .unwrap()
+            .1
+            .clone(),
+    )
+    .unwrap();
+    let data = entries
+        .iter()
+        .find(|e| e.0 == "bindata/data.bin")
+        .unwrap()
+        .1
+        .clone();
     let o = ReadOptions::default();
     let e = err_of(&write("magic.x3p", b"not a zip"), &o);
     assert!(e.contains("zip"), "{e}");
     let e = err_of(&write("trunc.x3p", &good[..good.len() / 2]), &o);
     assert!(e.contains("x3p file"), "{e}");
-    let e = err_of(&write("noxml.x3p", &zip_of(&[("bindata/data.bin", &data)])), &o);
+    let e = err_of(
+        &write("noxml.x3p", &zip_of(&[("bindata/data.bin", &data)])),
+        &o,
+    );
     assert!(e.contains("no main.xml"), "{e}");
     let prf = xml.replace("<FeatureType>SUR", "<FeatureType>PRF");
-    let e = err_of(&write("prf.x3p", &zip_of(&[("main.xml", prf.as_bytes()), ("bindata/data.bin", &data)])), &o);
+    let e = err_of(
+        &write(
+            "prf.x3p",
+            &zip_of(&[("main.xml", prf.as_bytes()), ("bindata/data.bin", &data)]),
+        ),
+        &o,
+    );
     assert!(e.contains("PRF"), "{e}");
     let e = err_of(
-        &write("short.x3p", &zip_of(&[("main.xml", xml.as_bytes()), ("bindata/data.bin", &data[..data.len() - 8])])),
+        &write(
+            "short.x3p",
+            &zip_of(&[
+                ("main.xml", xml.as_bytes()),
+                ("bindata/data.bin", &data[..data.len() - 8]),
+            ]),
+        ),
         &o,
     );
     assert!(e.contains("bindata/data.bin") && e.contains("need"), "{e}");
     let mut flipped = data.clone();
     flipped[3] ^= 1;
-    let e = err_of(&write("md5.x3p", &zip_of(&[("main.xml", xml.as_bytes()), ("bindata/data.bin", &flipped)])), &o);
+    let e = err_of(
+        &write(
+            "md5.x3p",
+            &zip_of(&[("main.xml", xml.as_bytes()), ("bindata/data.bin", &flipped)]),
+        ),
+        &o,
+    );
     assert!(e.contains("MD5"), "{e}");
     let mut valid = vec![0xffu8; (13 * 9usize).div_ceil(8)];
     valid[2] = 0xfe;
     let e = err_of(
         &write(
             "valid.x3p",
-            &zip_of(&[("main.xml", xml.as_bytes()), ("bindata/data.bin", &data), ("bindata/valid.bin", &valid)]),
+            &zip_of(&[
+                ("main.xml", xml.as_bytes()),
+                ("bindata/data.bin", &data),
+                ("bindata/valid.bin", &valid),
+            ]),
         ),
         &o,
     );
     assert!(e.contains("1 of 117 points are marked invalid"), "{e}");
     let huge = xml.replace("<SizeX>13</SizeX>", "<SizeX>130000000</SizeX>");
-    let e = err_of(&write("huge.x3p", &zip_of(&[("main.xml", huge.as_bytes()), ("bindata/data.bin", &data)])), &o);
+    let e = err_of(
+        &write(
+            "huge.x3p",
+            &zip_of(&[("main.xml", huge.as_bytes()), ("bindata/data.bin", &data)]),
+        ),
+        &o,
+    );
     assert!(e.contains("exceeds the cap"), "{e}");
     let bad_xml = xml.replace("</Record1>", "");
-    let e = err_of(&write("xml.x3p", &zip_of(&[("main.xml", bad_xml.as_bytes())])), &o);
+    let e = err_of(
+        &write("xml.x3p", &zip_of(&[("main.xml", bad_xml.as_bytes())])),
+        &o,
+    );
     assert!(e.contains("main.xml"), "{e}");
 }
 
@@ -478,7 +653,10 @@ fn size_caps_hold_for_files_and_streams() {
         ..ReadOptions::default()
     };
     let e = err_of(&big, &small);
-    assert!(e.contains("the file (4096 bytes) exceeds the cap of 1000 bytes"), "{e}");
+    assert!(
+        e.contains("the file (4096 bytes) exceeds the cap of 1000 bytes"),
+        "{e}"
+    );
     // an endless stream is cut at the cap instead of exhausting memory
     if Path::new("/dev/zero").exists() {
         let opts = ReadOptions {
@@ -487,7 +665,9 @@ fn size_caps_hold_for_files_and_streams() {
             ..ReadOptions::default()
         };
         match read_path("/dev/zero", &opts) {
-            Err(TopographyError::TooLarge { what, .. }) => assert!(what.contains("stream"), "{what}"),
+            Err(TopographyError::TooLarge { what, .. }) => {
+                assert!(what.contains("stream"), "{what}")
+            }
             other => panic!("{other:?}"),
         }
     }

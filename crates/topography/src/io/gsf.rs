@@ -27,7 +27,10 @@ pub fn read_gsf(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Measuremen
 pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Measurement> {
     let mut st = Settle::new(path, Format::Gsf, opts);
     if !bytes.starts_with(MAGIC) {
-        return Err(st.err("magic line", "does not start with \"Gwyddion Simple Field 1.0\": not a GSF file"));
+        return Err(st.err(
+            "magic line",
+            "does not start with \"Gwyddion Simple Field 1.0\": not a GSF file",
+        ));
     }
     let search = &bytes[..bytes.len().min(MAX_HEADER)];
     let Some(nul) = search.iter().position(|&b| b == 0) else {
@@ -40,7 +43,8 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
             },
         ));
     };
-    let text = std::str::from_utf8(&bytes[MAGIC.len()..nul]).map_err(|_| st.err("header", "not UTF-8 text"))?;
+    let text = std::str::from_utf8(&bytes[MAGIC.len()..nul])
+        .map_err(|_| st.err("header", "not UTF-8 text"))?;
     let data_start = (nul / 4 + 1) * 4;
     if bytes.len() < data_start || bytes[nul..data_start].iter().any(|&b| b != 0) {
         return Err(st.err(
@@ -55,17 +59,23 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
             continue;
         }
         let Some((name, value)) = line.split_once('=') else {
-            return Err(st.err(format!("header line {line_no}"), format!("{line:?} is not name = value")));
+            return Err(st.err(
+                format!("header line {line_no}"),
+                format!("{line:?} is not name = value"),
+            ));
         };
         fields.push((name.trim(), value.trim(), line_no));
     }
     let get = |name: &str| fields.iter().find(|f| f.0 == name);
     let int = |st: &Settle, name: &str| -> Result<u64> {
-        let (_, v, l) = get(name).ok_or_else(|| st.err(format!("header field {name}"), "missing (mandatory)"))?;
-        v.parse::<u64>()
-            .ok()
-            .filter(|&n| n > 0)
-            .ok_or_else(|| st.err(format!("header field {name} (line {l})"), format!("{v:?} is not a positive integer")))
+        let (_, v, l) = get(name)
+            .ok_or_else(|| st.err(format!("header field {name}"), "missing (mandatory)"))?;
+        v.parse::<u64>().ok().filter(|&n| n > 0).ok_or_else(|| {
+            st.err(
+                format!("header field {name} (line {l})"),
+                format!("{v:?} is not a positive integer"),
+            )
+        })
     };
     let real = |st: &Settle, name: &str| -> Result<Option<f64>> {
         match get(name) {
@@ -75,7 +85,12 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
                 .ok()
                 .filter(|x| x.is_finite() && *x > 0.0)
                 .map(Some)
-                .ok_or_else(|| st.err(format!("header field {name} (line {l})"), format!("{v:?} is not a positive number"))),
+                .ok_or_else(|| {
+                    st.err(
+                        format!("header field {name} (line {l})"),
+                        format!("{v:?} is not a positive number"),
+                    )
+                }),
         }
     };
     let (nx, ny) = (int(&st, "XRes")?, int(&st, "YRes")?);
@@ -95,13 +110,19 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     st.title = get("Title").map(|f| f.1.to_string());
     let xy = get("XYUnits").map_or(FileUnit::Absent, |f| FileUnit::from_file(f.1));
     let file_spacing = match (xr, yr, &xy) {
-        (Some(x), Some(y), FileUnit::Length(u)) => Some((x * u.to_metres / nx as f64, y * u.to_metres / ny as f64)),
+        (Some(x), Some(y), FileUnit::Length(u)) => {
+            Some((x * u.to_metres / nx as f64, y * u.to_metres / ny as f64))
+        }
         (Some(x), Some(y), FileUnit::Absent) => {
-            st.notes.push("XYUnits is absent: XReal and YReal are taken in metres".to_string());
+            st.notes
+                .push("XYUnits is absent: XReal and YReal are taken in metres".to_string());
             Some((x / nx as f64, y / ny as f64))
         }
         (Some(_), Some(_), FileUnit::Other(u)) => {
-            return Err(st.err("header field XYUnits", format!("{u:?} is not a length unit")));
+            return Err(st.err(
+                "header field XYUnits",
+                format!("{u:?} is not a length unit"),
+            ));
         }
         _ => None,
     };

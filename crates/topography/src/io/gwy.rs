@@ -80,7 +80,10 @@ impl Parser<'_, '_> {
     fn cstring(&self, pos: &mut usize, end: usize, what: &str) -> Result<String> {
         let start = *pos;
         let Some(len) = self.buf[start..end].iter().position(|&b| b == 0) else {
-            return Err(self.err(start, format!("{what}: no NUL ends the string before the end of its object")));
+            return Err(self.err(
+                start,
+                format!("{what}: no NUL ends the string before the end of its object"),
+            ));
         };
         *pos = start + len + 1;
         String::from_utf8(self.buf[start..start + len].to_vec())
@@ -89,7 +92,12 @@ impl Parser<'_, '_> {
 
     fn u32(&self, pos: &mut usize, end: usize, what: &str) -> Result<usize> {
         let s = self.take(pos, 4, end, what)?;
-        Ok(u32::from_le_bytes([self.buf[s], self.buf[s + 1], self.buf[s + 2], self.buf[s + 3]]) as usize)
+        Ok(u32::from_le_bytes([
+            self.buf[s],
+            self.buf[s + 1],
+            self.buf[s + 2],
+            self.buf[s + 3],
+        ]) as usize)
     }
 
     fn bytes8(&self, s: usize) -> [u8; 8] {
@@ -105,7 +113,12 @@ impl Parser<'_, '_> {
         }
         let name = self.cstring(pos, end, "object type name")?;
         let size = self.u32(pos, end, &format!("size of object {name}"))?;
-        let obj_end = self.take(pos, size, end, &format!("object {name} (declared {size} bytes)"))? + size;
+        let obj_end = self.take(
+            pos,
+            size,
+            end,
+            &format!("object {name} (declared {size} bytes)"),
+        )? + size;
         let mut p = *pos - size;
         let mut components = Vec::new();
         while p < obj_end {
@@ -124,8 +137,12 @@ impl Parser<'_, '_> {
                     let b = &self.buf[s..s + 4];
                     Value::Int(i32::from_le_bytes([b[0], b[1], b[2], b[3]]) as i64)
                 }
-                b'q' => Value::Int(i64::from_le_bytes(self.bytes8(self.take(&mut p, 8, obj_end, &what)?))),
-                b'd' => Value::Double(f64::from_le_bytes(self.bytes8(self.take(&mut p, 8, obj_end, &what)?))),
+                b'q' => Value::Int(i64::from_le_bytes(
+                    self.bytes8(self.take(&mut p, 8, obj_end, &what)?),
+                )),
+                b'd' => Value::Double(f64::from_le_bytes(
+                    self.bytes8(self.take(&mut p, 8, obj_end, &what)?),
+                )),
                 b's' => Value::Str(self.cstring(&mut p, obj_end, &what)?),
                 b'o' => Value::Object(self.object(&mut p, obj_end, depth + 1)?),
                 b'C' | b'I' | b'Q' | b'D' => {
@@ -135,7 +152,12 @@ impl Parser<'_, '_> {
                         b'I' => 4,
                         _ => 8,
                     };
-                    let start = self.take(&mut p, count.saturating_mul(item), obj_end, &format!("{what} ({count} items)"))?;
+                    let start = self.take(
+                        &mut p,
+                        count.saturating_mul(item),
+                        obj_end,
+                        &format!("{what} ({count} items)"),
+                    )?;
                     if ty == b'D' {
                         Value::Doubles { start, count }
                     } else {
@@ -159,7 +181,10 @@ impl Parser<'_, '_> {
                 other => {
                     return Err(self.err(
                         t,
-                        format!("{what}: unknown component type {:?} (corrupt file?)", other as char),
+                        format!(
+                            "{what}: unknown component type {:?} (corrupt file?)",
+                            other as char
+                        ),
                     ))
                 }
             };
@@ -167,7 +192,11 @@ impl Parser<'_, '_> {
             components.push((cname, value));
         }
         *pos = obj_end;
-        Ok(Object { name, at, components })
+        Ok(Object {
+            name,
+            at,
+            components,
+        })
     }
 }
 
@@ -184,25 +213,41 @@ fn unit_of(field: &Object, key: &str) -> FileUnit {
 pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Measurement> {
     let mut st = Settle::new(path, Format::Gwy, opts);
     if bytes.starts_with(b"GWYO") {
-        return Err(st.err("magic", "GWYO: the Gwyddion 1.x format is not supported; re-save the file with Gwyddion 2"));
+        return Err(st.err(
+            "magic",
+            "GWYO: the Gwyddion 1.x format is not supported; re-save the file with Gwyddion 2",
+        ));
     }
     if !bytes.starts_with(b"GWYP") {
         return Err(st.err("magic", "does not start with GWYP: not a Gwyddion file"));
     }
-    let parser = Parser { buf: bytes, st: &st };
+    let parser = Parser {
+        buf: bytes,
+        st: &st,
+    };
     let mut pos = 4;
     let top = parser.object(&mut pos, bytes.len(), 0)?;
     if pos != bytes.len() {
-        return Err(st.err(format!("byte {pos}"), format!("{} bytes follow the top object", bytes.len() - pos)));
+        return Err(st.err(
+            format!("byte {pos}"),
+            format!("{} bytes follow the top object", bytes.len() - pos),
+        ));
     }
     if top.name != "GwyContainer" {
-        return Err(st.err("byte 4", format!("the top object is a {}, not a GwyContainer", top.name)));
+        return Err(st.err(
+            "byte 4",
+            format!("the top object is a {}, not a GwyContainer", top.name),
+        ));
     }
     let mut channels: Vec<(u64, &str, &Object)> = top
         .components
         .iter()
         .filter_map(|(k, v)| {
-            let id = k.strip_prefix('/')?.strip_suffix("/data")?.parse::<u64>().ok()?;
+            let id = k
+                .strip_prefix('/')?
+                .strip_suffix("/data")?
+                .parse::<u64>()
+                .ok()?;
             match v {
                 Value::Object(o) if o.name == "GwyDataField" => Some((id, k.as_str(), o)),
                 _ => None,
@@ -211,7 +256,10 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         .collect();
     channels.sort_by_key(|c| c.0);
     let Some(&(id, key, field)) = channels.first() else {
-        return Err(st.err("GwyContainer", "no channel: no component /N/data holding a GwyDataField"));
+        return Err(st.err(
+            "GwyContainer",
+            "no channel: no component /N/data holding a GwyDataField",
+        ));
     };
     let title = match top.get(&format!("{key}/title")) {
         Some(Value::Str(s)) => Some(s.clone()),
@@ -237,7 +285,9 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     let real = |c: &str| -> Result<f64> {
         match field.get(c) {
             Some(Value::Double(v)) if v.is_finite() && *v > 0.0 => Ok(*v),
-            Some(Value::Double(v)) => Err(st.err(loc(c), format!("{v} is not a positive finite size"))),
+            Some(Value::Double(v)) => {
+                Err(st.err(loc(c), format!("{v} is not a positive finite size")))
+            }
             Some(_) => Err(st.err(loc(c), "has the wrong type (expected d)")),
             None => Err(st.err(loc(c), "missing")),
         }
@@ -247,11 +297,19 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     let (xreal, yreal) = (real("xreal")?, real("yreal")?);
     let (start, count) = match field.get("data") {
         Some(Value::Doubles { start, count }) => (*start, *count),
-        Some(_) => return Err(st.err(loc("data"), "has the wrong type (expected D, an array of doubles)")),
+        Some(_) => {
+            return Err(st.err(
+                loc("data"),
+                "has the wrong type (expected D, an array of doubles)",
+            ))
+        }
         None => return Err(st.err(loc("data"), "missing")),
     };
     if count != n {
-        return Err(st.err(loc("data"), format!("{count} values, but xres x yres = {nx} x {ny} = {n}")));
+        return Err(st.err(
+            loc("data"),
+            format!("{count} values, but xres x yres = {nx} x {ny} = {n}"),
+        ));
     }
     let xy = unit_of(field, "si_unit_xy");
     let zu = unit_of(field, "si_unit_z");
@@ -260,11 +318,13 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         .map(|b| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]))
         .collect();
     let (xy_loc, z_loc) = (loc("si_unit_xy"), loc("si_unit_z"));
-    drop(parser);
     st.title = title;
     st.notes = notes;
     let file_spacing = match xy {
-        FileUnit::Length(u) => Some((xreal * u.to_metres / nx as f64, yreal * u.to_metres / ny as f64)),
+        FileUnit::Length(u) => Some((
+            xreal * u.to_metres / nx as f64,
+            yreal * u.to_metres / ny as f64,
+        )),
         FileUnit::Absent => None,
         FileUnit::Other(u) if st.opts.spacing.is_none() => {
             return Err(st.err(xy_loc, format!("lateral unit {u:?} is not a length")));

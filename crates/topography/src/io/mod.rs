@@ -49,7 +49,14 @@ pub enum Format {
 
 impl Format {
     /// Every format, in the order of the docs.
-    pub const ALL: [Format; 6] = [Format::Text, Format::Xyz, Format::Npy, Format::Gsf, Format::Gwy, Format::X3p];
+    pub const ALL: [Format; 6] = [
+        Format::Text,
+        Format::Xyz,
+        Format::Npy,
+        Format::Gsf,
+        Format::Gwy,
+        Format::X3p,
+    ];
 
     /// The format's name as accepted by [`Format::from_str`].
     pub fn name(self) -> &'static str {
@@ -116,7 +123,9 @@ impl FromStr for Format {
             "gsf" => Ok(Format::Gsf),
             "gwy" => Ok(Format::Gwy),
             "x3p" => Ok(Format::X3p),
-            _ => Err(format!("unknown format {s:?}: text, xyz, npy, gsf, gwy or x3p")),
+            _ => Err(format!(
+                "unknown format {s:?}: text, xyz, npy, gsf, gwy or x3p"
+            )),
         }
     }
 }
@@ -197,7 +206,11 @@ pub fn read_path(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Measureme
     let bytes = read_bounded(path, opts.max_bytes)?;
     let format = match opts.format {
         Some(f) => f,
-        None => match path.extension().and_then(|e| e.to_str()).and_then(Format::from_extension) {
+        None => match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .and_then(Format::from_extension)
+        {
             Some(f) => f,
             None => Format::sniff(&bytes).unwrap_or(Format::Text),
         },
@@ -206,7 +219,12 @@ pub fn read_path(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Measureme
 }
 
 /// Decodes bytes already in memory as `format` (`path` only names the data in errors).
-pub fn decode(path: &Path, bytes: &[u8], format: Format, opts: &ReadOptions) -> Result<Measurement> {
+pub fn decode(
+    path: &Path,
+    bytes: &[u8],
+    format: Format,
+    opts: &ReadOptions,
+) -> Result<Measurement> {
     if bytes.len() as u64 > opts.max_bytes {
         return Err(TopographyError::TooLarge {
             path: path.to_path_buf(),
@@ -271,9 +289,13 @@ pub(crate) fn read_bounded(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
         }
     }
     let mut buf = Vec::new();
-    file.take(max_bytes.saturating_add(1)).read_to_end(&mut buf).map_err(io)?;
+    file.take(max_bytes.saturating_add(1))
+        .read_to_end(&mut buf)
+        .map_err(io)?;
     if buf.len() as u64 > max_bytes {
-        return Err(too_large(format!("the stream (more than {max_bytes} bytes)")));
+        return Err(too_large(format!(
+            "the stream (more than {max_bytes} bytes)"
+        )));
     }
     Ok(buf)
 }
@@ -335,13 +357,16 @@ impl<'a> Settle<'a> {
 
     /// Refuses a grid above the point cap (before anything is allocated).
     pub fn check_points(&self, nx: u64, ny: u64) -> Result<usize> {
-        let n = nx.checked_mul(ny).filter(|&n| n <= self.opts.max_points as u64);
-        n.map(|n| n as usize).ok_or_else(|| TopographyError::TooLarge {
-            path: self.path.to_path_buf(),
-            what: format!("the grid {nx} x {ny}"),
-            limit: self.opts.max_points as u64,
-            unit: "points",
-        })
+        let n = nx
+            .checked_mul(ny)
+            .filter(|&n| n <= self.opts.max_points as u64);
+        n.map(|n| n as usize)
+            .ok_or_else(|| TopographyError::TooLarge {
+                path: self.path.to_path_buf(),
+                what: format!("the grid {nx} x {ny}"),
+                limit: self.opts.max_points as u64,
+                unit: "points",
+            })
     }
 
     /// The spacing (dx, dy) in metres from the file's (if any) and the options'.
@@ -349,7 +374,11 @@ impl<'a> Settle<'a> {
         match (self.opts.spacing, file) {
             (Some(s), file) => {
                 if !(s.is_finite() && s > 0.0) {
-                    return Err(TopographyError::param("spacing", s, "must be finite and > 0 (m)"));
+                    return Err(TopographyError::param(
+                        "spacing",
+                        s,
+                        "must be finite and > 0 (m)",
+                    ));
                 }
                 if let Some((fx, fy)) = file {
                     let close = |a: f64| (a - s).abs() <= 1e-9 * s;

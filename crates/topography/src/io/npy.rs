@@ -26,16 +26,31 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     }
     // The header length is checked against the file before npyz allocates it.
     let declared = match bytes.get(6) {
-        Some(1) => bytes.get(8..10).map(|b| u16::from_le_bytes([b[0], b[1]]) as usize + 10),
-        Some(2 | 3) => bytes.get(8..12).map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize + 12),
-        _ => return Err(st.err("version", format!("unknown .npy version {:?}", bytes.get(6..8)))),
+        Some(1) => bytes
+            .get(8..10)
+            .map(|b| u16::from_le_bytes([b[0], b[1]]) as usize + 10),
+        Some(2 | 3) => bytes
+            .get(8..12)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize + 12),
+        _ => {
+            return Err(st.err(
+                "version",
+                format!("unknown .npy version {:?}", bytes.get(6..8)),
+            ))
+        }
     };
     match declared {
         Some(end) if end <= bytes.len() => {}
-        _ => return Err(st.err("header", "the header is longer than the file (truncated file)")),
+        _ => {
+            return Err(st.err(
+                "header",
+                "the header is longer than the file (truncated file)",
+            ))
+        }
     }
     let mut reader: &[u8] = bytes;
-    let header = NpyHeader::from_reader(&mut reader).map_err(|e| st.err("header", e.to_string()))?;
+    let header =
+        NpyHeader::from_reader(&mut reader).map_err(|e| st.err("header", e.to_string()))?;
     let have = reader.len() as u64;
     let file = NpyFile::with_header(header, reader);
     let shape = file.shape().to_vec();
@@ -48,7 +63,10 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     let (ny, nx) = (shape[0], shape[1]);
     let n = st.check_points(nx, ny)?;
     let DType::Plain(ts) = file.dtype() else {
-        return Err(st.err("header field descr", "a structured or nested dtype; expected floats or integers"));
+        return Err(st.err(
+            "header field descr",
+            "a structured or nested dtype; expected floats or integers",
+        ));
     };
     let size = ts.size_field();
     let ok = match ts.type_char() {
@@ -76,16 +94,61 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     }
     let read_err = |e: std::io::Error| st.err("data", e.to_string());
     let raw: Vec<f64> = match (ts.type_char(), size) {
-        (TypeChar::Float, 4) => file.into_vec::<f32>().map_err(read_err)?.into_iter().map(f64::from).collect(),
+        (TypeChar::Float, 4) => file
+            .into_vec::<f32>()
+            .map_err(read_err)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
         (TypeChar::Float, _) => file.into_vec::<f64>().map_err(read_err)?,
-        (TypeChar::Int, 1) => file.into_vec::<i8>().map_err(read_err)?.into_iter().map(f64::from).collect(),
-        (TypeChar::Int, 2) => file.into_vec::<i16>().map_err(read_err)?.into_iter().map(f64::from).collect(),
-        (TypeChar::Int, 4) => file.into_vec::<i32>().map_err(read_err)?.into_iter().map(f64::from).collect(),
-        (TypeChar::Int, _) => file.into_vec::<i64>().map_err(read_err)?.into_iter().map(|v| v as f64).collect(),
-        (_, 1) => file.into_vec::<u8>().map_err(read_err)?.into_iter().map(f64::from).collect(),
-        (_, 2) => file.into_vec::<u16>().map_err(read_err)?.into_iter().map(f64::from).collect(),
-        (_, 4) => file.into_vec::<u32>().map_err(read_err)?.into_iter().map(f64::from).collect(),
-        (_, _) => file.into_vec::<u64>().map_err(read_err)?.into_iter().map(|v| v as f64).collect(),
+        (TypeChar::Int, 1) => file
+            .into_vec::<i8>()
+            .map_err(read_err)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
+        (TypeChar::Int, 2) => file
+            .into_vec::<i16>()
+            .map_err(read_err)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
+        (TypeChar::Int, 4) => file
+            .into_vec::<i32>()
+            .map_err(read_err)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
+        (TypeChar::Int, _) => file
+            .into_vec::<i64>()
+            .map_err(read_err)?
+            .into_iter()
+            .map(|v| v as f64)
+            .collect(),
+        (_, 1) => file
+            .into_vec::<u8>()
+            .map_err(read_err)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
+        (_, 2) => file
+            .into_vec::<u16>()
+            .map_err(read_err)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
+        (_, 4) => file
+            .into_vec::<u32>()
+            .map_err(read_err)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
+        (_, _) => file
+            .into_vec::<u64>()
+            .map_err(read_err)?
+            .into_iter()
+            .map(|v| v as f64)
+            .collect(),
     };
     let (nx, ny) = (nx as usize, ny as usize);
     let z = match order {

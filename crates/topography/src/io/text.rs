@@ -50,12 +50,21 @@ fn split_fields(line: &str) -> Vec<&str> {
     }
 }
 
-pub(crate) fn decode_text(path: &Path, bytes: &[u8], opts: &ReadOptions, xyz: bool) -> Result<Measurement> {
+pub(crate) fn decode_text(
+    path: &Path,
+    bytes: &[u8],
+    opts: &ReadOptions,
+    xyz: bool,
+) -> Result<Measurement> {
     let mut st = Settle::new(path, if xyz { Format::Xyz } else { Format::Text }, opts);
     let text = match std::str::from_utf8(bytes) {
         Ok(t) => t,
         Err(e) => {
-            let line = bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1;
+            let line = bytes[..e.valid_up_to()]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count()
+                + 1;
             return Err(st.err(
                 format!("line {line}"),
                 "not UTF-8 text (a binary file? name its format, or check the extension)",
@@ -69,12 +78,17 @@ pub(crate) fn decode_text(path: &Path, bytes: &[u8], opts: &ReadOptions, xyz: bo
     };
     // Pass 1: header lines.
     for (k, line) in text.lines().enumerate() {
-        let Some(c) = line.trim_start().strip_prefix('#') else { continue };
-        let Some(sep) = c.find(['=', ':']) else { continue };
+        let Some(c) = line.trim_start().strip_prefix('#') else {
+            continue;
+        };
+        let Some(sep) = c.find(['=', ':']) else {
+            continue;
+        };
         let key = c[..sep].trim().to_ascii_lowercase();
         let value = c[sep + 1..].trim();
         let at = format!("line {}", k + 1);
-        let length = |v: &str| parse_length(v).map_err(|e| st.err(&at, format!("{key} = {v:?}: {e}")));
+        let length =
+            |v: &str| parse_length(v).map_err(|e| st.err(&at, format!("{key} = {v:?}: {e}")));
         match key.as_str() {
             "spacing" => {
                 let v = length(value)?;
@@ -98,12 +112,16 @@ pub(crate) fn decode_text(path: &Path, bytes: &[u8], opts: &ReadOptions, xyz: bo
                 h.z_unit = Some((u, k + 1));
             }
             "xy_unit" | "x_unit" => {
-                h.xy_unit = Some(LengthUnit::parse(value).map_err(|e| st.err(&at, format!("xy_unit: {e}")))?)
+                h.xy_unit = Some(
+                    LengthUnit::parse(value).map_err(|e| st.err(&at, format!("xy_unit: {e}")))?,
+                )
             }
             "format" => match value.to_ascii_lowercase().as_str() {
                 "xyz" => h.xyz = true,
                 "matrix" | "text" => h.xyz = false,
-                other => return Err(st.err(&at, format!("format = {other:?}: expected matrix or xyz"))),
+                other => {
+                    return Err(st.err(&at, format!("format = {other:?}: expected matrix or xyz")))
+                }
             },
             _ => {}
         }
@@ -147,7 +165,10 @@ pub(crate) fn decode_text(path: &Path, bytes: &[u8], opts: &ReadOptions, xyz: bo
     if nrows == 0 {
         return Err(st.err("data", "no data lines (only comments or blank lines)"));
     }
-    let file_spacing = match (h.dx.or(h.width.map(|w| w / ncols as f64)), h.dy.or(h.height.map(|w| w / nrows as f64))) {
+    let file_spacing = match (
+        h.dx.or(h.width.map(|w| w / ncols as f64)),
+        h.dy.or(h.height.map(|w| w / nrows as f64)),
+    ) {
         (Some(x), Some(y)) => Some((x, y)),
         (Some(x), None) => Some((x, x)),
         (None, Some(y)) => Some((y, y)),
@@ -218,11 +239,18 @@ fn decode_xyz_body(mut st: Settle, text: &str, h: Header) -> Result<Measurement>
         return Err(st.err("data", "no data lines"));
     }
     let axis = |st: &Settle, v: &[f64], name: &str| -> Result<(f64, f64, usize)> {
-        let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
         let tol = 1e-9 * (hi - lo).max(lo.abs().max(hi.abs()));
         let d = distinct(v.to_vec(), tol);
         if d.len() < 3 {
-            return Err(st.err("grid", format!("{} distinct {name} values: a map needs at least 3", d.len())));
+            return Err(st.err(
+                "grid",
+                format!("{} distinct {name} values: a map needs at least 3", d.len()),
+            ));
         }
         let step = (hi - lo) / (d.len() - 1) as f64;
         for (k, &x) in d.iter().enumerate() {
@@ -317,7 +345,13 @@ pub fn encode_xyz(map: &HeightMap) -> String {
     let _ = writeln!(s, "# height_unit = m");
     for j in 0..map.ny() {
         for i in 0..map.nx() {
-            let _ = writeln!(s, "{:e} {:e} {:e}", i as f64 * map.dx(), j as f64 * map.dy(), map.at(i, j));
+            let _ = writeln!(
+                s,
+                "{:e} {:e} {:e}",
+                i as f64 * map.dx(),
+                j as f64 * map.dy(),
+                map.at(i, j)
+            );
         }
     }
     s

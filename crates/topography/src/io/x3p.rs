@@ -55,7 +55,10 @@ fn entry(
     if exact && f.size() != cap {
         return Err(st.err(
             format!("archive entry {name}"),
-            format!("{} bytes, but main.xml's grid and data type need {cap}", f.size()),
+            format!(
+                "{} bytes, but main.xml's grid and data type need {cap}",
+                f.size()
+            ),
         ));
     }
     if f.size() > cap {
@@ -67,10 +70,12 @@ fn entry(
         });
     }
     let mut buf = Vec::new();
-    (&mut f)
-        .take(cap + 1)
-        .read_to_end(&mut buf)
-        .map_err(|e| st.err(format!("archive entry {name}"), format!("cannot decompress: {e}")))?;
+    (&mut f).take(cap + 1).read_to_end(&mut buf).map_err(|e| {
+        st.err(
+            format!("archive entry {name}"),
+            format!("cannot decompress: {e}"),
+        )
+    })?;
     if buf.len() as u64 > cap {
         return Err(TopographyError::TooLarge {
             path: st.path.to_path_buf(),
@@ -83,7 +88,8 @@ fn entry(
 }
 
 fn child<'a, 'i>(node: roxmltree::Node<'a, 'i>, name: &str) -> Option<roxmltree::Node<'a, 'i>> {
-    node.children().find(|c| c.is_element() && c.tag_name().name() == name)
+    node.children()
+        .find(|c| c.is_element() && c.tag_name().name() == name)
 }
 
 fn path_text<'a>(root: roxmltree::Node<'a, '_>, path: &[&str]) -> Option<&'a str> {
@@ -97,16 +103,32 @@ fn path_text<'a>(root: roxmltree::Node<'a, '_>, path: &[&str]) -> Option<&'a str
 pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Measurement> {
     let mut st = Settle::new(path, Format::X3p, opts);
     if !bytes.starts_with(b"PK\x03\x04") {
-        return Err(st.err("archive", "does not start with a zip signature (PK): not an x3p file"));
+        return Err(st.err(
+            "archive",
+            "does not start with a zip signature (PK): not an x3p file",
+        ));
     }
-    let mut zip = zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| st.err("archive", e.to_string()))?;
-    let xml_bytes = entry(&st, &mut zip, "main.xml", MAX_XML.min(opts.max_bytes), false)?
-        .ok_or_else(|| st.err("archive", "no main.xml entry"))?;
+    let mut zip =
+        zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| st.err("archive", e.to_string()))?;
+    let xml_bytes = entry(
+        &st,
+        &mut zip,
+        "main.xml",
+        MAX_XML.min(opts.max_bytes),
+        false,
+    )?
+    .ok_or_else(|| st.err("archive", "no main.xml entry"))?;
     let xml = std::str::from_utf8(&xml_bytes).map_err(|_| st.err("main.xml", "not UTF-8"))?;
     let doc = roxmltree::Document::parse(xml).map_err(|e| st.err("main.xml", e.to_string()))?;
     let root = doc.root_element();
     if root.tag_name().name() != "ISO5436_2" {
-        return Err(st.err("main.xml", format!("root element {}, expected ISO5436_2", root.tag_name().name())));
+        return Err(st.err(
+            "main.xml",
+            format!(
+                "root element {}, expected ISO5436_2",
+                root.tag_name().name()
+            ),
+        ));
     }
     let get = |p: &[&str]| path_text(root, p);
     let field = |p: &[&str]| format!("main.xml {}", p.join("/"));
@@ -134,12 +156,17 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         if t != "I" {
             return Err(st.err(
                 field(&["Record1", "Axes", ax, "AxisType"]),
-                format!("{t}: only incremental (I) lateral axes, i.e. a regular grid, are supported"),
+                format!(
+                    "{t}: only incremental (I) lateral axes, i.e. a regular grid, are supported"
+                ),
             ));
         }
         let v = number(&st, &["Record1", "Axes", ax, "Increment"], None)?;
         if !(v > 0.0) {
-            return Err(st.err(field(&["Record1", "Axes", ax, "Increment"]), format!("{v} is not a positive spacing")));
+            return Err(st.err(
+                field(&["Record1", "Axes", ax, "Increment"]),
+                format!("{v} is not a positive spacing"),
+            ));
         }
         inc[k] = v;
     }
@@ -161,17 +188,25 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     let dim = |st: &Settle, d: &str| -> Result<u64> {
         let p = ["Record3", "MatrixDimension", d];
         let t = need(st, &p)?;
-        t.parse::<u64>().map_err(|_| st.err(field(&p), format!("{t:?} is not a size")))
+        t.parse::<u64>()
+            .map_err(|_| st.err(field(&p), format!("{t:?} is not a size")))
     };
     let (nx, ny, nz) = (dim(&st, "SizeX")?, dim(&st, "SizeY")?, dim(&st, "SizeZ")?);
     if nz != 1 {
-        return Err(st.err(field(&["Record3", "MatrixDimension", "SizeZ"]), format!("{nz} layers; one is supported")));
+        return Err(st.err(
+            field(&["Record3", "MatrixDimension", "SizeZ"]),
+            format!("{nz} layers; one is supported"),
+        ));
     }
     let n = st.check_points(nx, ny)?;
     let raw: Vec<f64> = if let Some(link) = get(&["Record3", "DataLink", "PointDataLink"]) {
         let want = n as u64 * size;
-        let data = entry(&st, &mut zip, link, want, true)?
-            .ok_or_else(|| st.err(field(&["Record3", "DataLink", "PointDataLink"]), format!("{link}: no such entry in the archive")))?;
+        let data = entry(&st, &mut zip, link, want, true)?.ok_or_else(|| {
+            st.err(
+                field(&["Record3", "DataLink", "PointDataLink"]),
+                format!("{link}: no such entry in the archive"),
+            )
+        })?;
         if data.len() as u64 != want {
             return Err(st.err(
                 format!("archive entry {link}"),
@@ -188,9 +223,18 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
             }
         }
         match dtype.as_str() {
-            "I" => data.chunks_exact(2).map(|b| f64::from(i16::from_le_bytes([b[0], b[1]]))).collect(),
-            "L" => data.chunks_exact(4).map(|b| f64::from(i32::from_le_bytes([b[0], b[1], b[2], b[3]]))).collect(),
-            "F" => data.chunks_exact(4).map(|b| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]]))).collect(),
+            "I" => data
+                .chunks_exact(2)
+                .map(|b| f64::from(i16::from_le_bytes([b[0], b[1]])))
+                .collect(),
+            "L" => data
+                .chunks_exact(4)
+                .map(|b| f64::from(i32::from_le_bytes([b[0], b[1], b[2], b[3]])))
+                .collect(),
+            "F" => data
+                .chunks_exact(4)
+                .map(|b| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])))
+                .collect(),
             _ => data
                 .chunks_exact(8)
                 .map(|b| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]))
@@ -198,16 +242,27 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         }
     } else if let Some(list) = child(root, "Record3").and_then(|r| child(r, "DataList")) {
         let mut v = Vec::with_capacity(n);
-        for (k, d) in list.children().filter(|c| c.is_element() && c.tag_name().name() == "Datum").enumerate() {
+        for (k, d) in list
+            .children()
+            .filter(|c| c.is_element() && c.tag_name().name() == "Datum")
+            .enumerate()
+        {
             if k >= n {
-                return Err(st.err("main.xml Record3/DataList", format!("more than SizeX x SizeY = {n} Datum elements")));
+                return Err(st.err(
+                    "main.xml Record3/DataList",
+                    format!("more than SizeX x SizeY = {n} Datum elements"),
+                ));
             }
             let t = d.text().map(str::trim).unwrap_or("");
             let x = if t.is_empty() {
                 f64::NAN // an empty Datum is an invalid point
             } else {
-                t.parse::<f64>()
-                    .map_err(|_| st.err(format!("main.xml Record3/DataList/Datum[{k}]"), format!("{t:?} is not a number")))?
+                t.parse::<f64>().map_err(|_| {
+                    st.err(
+                        format!("main.xml Record3/DataList/Datum[{k}]"),
+                        format!("{t:?} is not a number"),
+                    )
+                })?
             };
             v.push(x);
         }
@@ -221,8 +276,16 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     } else {
         return Err(st.err("main.xml Record3", "neither DataLink nor DataList: no data"));
     };
-    if let Some(valid) = entry(&st, &mut zip, "bindata/valid.bin", (n as u64).div_ceil(8), false)? {
-        let invalid = (0..n).filter(|&k| valid.get(k / 8).is_none_or(|b| b & (1 << (k % 8)) == 0)).count();
+    if let Some(valid) = entry(
+        &st,
+        &mut zip,
+        "bindata/valid.bin",
+        (n as u64).div_ceil(8),
+        false,
+    )? {
+        let invalid = (0..n)
+            .filter(|&k| valid.get(k / 8).is_none_or(|b| b & (1 << (k % 8)) == 0))
+            .count();
         if invalid > 0 {
             return Err(st.err(
                 "archive entry bindata/valid.bin",
@@ -232,7 +295,10 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     }
     let z: Vec<f64> = raw.into_iter().map(|r| z_off + z_inc * r).collect();
     let spacing = st.spacing(Some((inc[0], inc[1])))?;
-    let unit = st.height_unit(FileUnit::Length(LengthUnit::METRE), "main.xml Record1/Axes/CZ")?;
+    let unit = st.height_unit(
+        FileUnit::Length(LengthUnit::METRE),
+        "main.xml Record1/Axes/CZ",
+    )?;
     st.finish(nx as usize, ny as usize, spacing, unit, z)
 }
 
@@ -271,7 +337,8 @@ pub fn encode_x3p(map: &HeightMap) -> Result<Vec<u8>> {
     let zerr = |e: zip::result::ZipError| TopographyError::param("x3p archive", "", e.to_string());
     let ioerr = |e: std::io::Error| TopographyError::param("x3p archive", "", e.to_string());
     let mut w = zip::ZipWriter::new(Cursor::new(Vec::new()));
-    let opt = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    let opt = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
     w.start_file("main.xml", opt).map_err(zerr)?;
     w.write_all(xml.as_bytes()).map_err(ioerr)?;
     w.start_file("bindata/data.bin", opt).map_err(zerr)?;
