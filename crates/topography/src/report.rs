@@ -675,23 +675,29 @@ pub fn scene_fragment(report: &TopographyReport, route: Route) -> Result<String>
         "# For two rough surfaces, analyse their sum surface (or combine the moments)."
     );
     let _ = writeln!(s);
+    let line =
+        |key: &str, v: f64, comment: &str| format!("{:<36}# {comment}", format!("{key} = {v:e}"));
     let _ = writeln!(s, "[surface]");
     let _ = writeln!(
         s,
-        "sigma_s = {:e}          # std. dev. of summit heights (m)",
-        gw.sigma_s
+        "{}",
+        line("sigma_s", gw.sigma_s, "std. dev. of summit heights (m)")
     );
     let _ = writeln!(
         s,
-        "asperity_density = {:e} # N (1/m^2)",
-        gw.asperity_density
+        "{}",
+        line("asperity_density", gw.asperity_density, "N (1/m^2)")
     );
     let _ = writeln!(s);
     let _ = writeln!(s, "[contact]");
     let _ = writeln!(
         s,
-        "radius = {:e}           # summit radius R (m), 1 / mean summit curvature",
-        gw.radius
+        "{}",
+        line(
+            "radius",
+            gw.radius,
+            "summit radius R (m), 1 / mean summit curvature"
+        )
     );
     Ok(s)
 }
