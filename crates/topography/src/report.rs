@@ -676,7 +676,7 @@ pub fn scene_fragment(report: &TopographyReport, route: Route) -> Result<String>
     );
     let _ = writeln!(s);
     let line =
-        |key: &str, v: f64, comment: &str| format!("{:<36}# {comment}", format!("{key} = {v:e}"));
+        |key: &str, v: f64, comment: &str| format!("{:<40} # {comment}", format!("{key} = {v:e}"));
     let _ = writeln!(s, "[surface]");
     let _ = writeln!(
         s,
