@@ -62,4 +62,4 @@ pub use report::{
 };
 pub use stats::{histogram, shape, Histogram, Shape, EXCESS_KURTOSIS_LIMIT, SKEWNESS_LIMIT};
 pub use summits::{find_summits, summit_statistics, Summit, SummitStatistics};
-pub use synth::{synthesize, Amplitudes, SynthesisOptions};
+pub use synth::{synthesize, Amplitudes, SynthesisOptions, MAX_POINTS as MAX_SYNTHETIC_POINTS};

@@ -41,6 +41,9 @@ pub struct SynthesisOptions {
     pub amplitudes: Amplitudes,
 }
 
+/// Largest synthetic grid (points): 2^26, as the readers' default cap.
+pub const MAX_POINTS: usize = 1 << 26;
+
 fn uniform(rng: &mut ChaCha8Rng) -> f64 {
     (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
@@ -103,14 +106,32 @@ fn cell_power(psd: &SelfAffinePsd, qx: f64, qy: f64, dqx: f64, dqy: f64) -> f64 
 /// (beyond Nyquist), lambda_l above the scan size, or no lattice wavevector in [q_l, q_s].
 pub fn synthesize(psd: &SelfAffinePsd, o: &SynthesisOptions) -> Result<HeightMap> {
     let (nx, ny, dx, dy) = (o.nx, o.ny, o.dx, o.dy);
-    // validate the grid (a zero map is a valid map)
+    if nx < HeightMap::MIN_SIDE || ny < HeightMap::MIN_SIDE {
+        return Err(TopographyError::param(
+            "grid",
+            format!("{nx} x {ny}"),
+            "needs at least 3 x 3 points",
+        ));
+    }
     let n = nx
         .checked_mul(ny)
-        .filter(|&n| n <= 1 << 28)
+        .filter(|&n| n <= MAX_POINTS)
         .ok_or_else(|| {
-            TopographyError::param("grid", format!("{nx} x {ny}"), "at most 2^28 points")
+            TopographyError::param(
+                "grid",
+                format!("{nx} x {ny}"),
+                format!("at most {MAX_POINTS} points"),
+            )
         })?;
-    HeightMap::new(nx, ny, dx, dy, vec![0.0; n])?;
+    for (name, v) in [("dx", dx), ("dy", dy)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(TopographyError::param(
+                name,
+                v,
+                "a grid spacing must be finite and > 0 (m)",
+            ));
+        }
+    }
     let tau = 2.0 * std::f64::consts::PI;
     let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
     if psd.q_s > std::f64::consts::PI / dx.max(dy) * (1.0 + 1e-12) {
@@ -192,4 +213,74 @@ pub fn synthesize(psd: &SelfAffinePsd, o: &SynthesisOptions) -> Result<HeightMap
     };
     z.iter_mut().for_each(|v| *v = (*v - mean) * scale);
     HeightMap::new(nx, ny, dx, dy, z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::psd::Normalization;
+
+    fn o(n: usize, dx: f64) -> SynthesisOptions {
+        SynthesisOptions {
+            nx: n,
+            ny: n,
+            dx,
+            dy: dx,
+            seed: 0,
+            amplitudes: Amplitudes::Fixed,
+        }
+    }
+
+    #[test]
+    fn spectra_that_do_not_fit_the_grid_are_refused() {
+        let psd =
+            SelfAffinePsd::new(0.8, 1e-6, None, 10e-9, Normalization::RmsHeight(1e-9)).unwrap();
+        // lambda_s = 10 nm below 2 dx = 20 nm
+        assert!(synthesize(&psd, &o(256, 10e-9))
+            .unwrap_err()
+            .to_string()
+            .contains("lambda_s"));
+        // lambda_l = 1 um above the 64 x 4 nm scan
+        assert!(synthesize(&psd, &o(64, 4e-9))
+            .unwrap_err()
+            .to_string()
+            .contains("lambda_l"));
+        assert!(synthesize(&psd, &o(2, 4e-9)).is_err());
+        assert!(synthesize(&psd, &o(1 << 14, 4e-9)).is_err()); // 2^28 points
+        assert!(synthesize(
+            &psd,
+            &SynthesisOptions {
+                dy: -1.0,
+                ..o(256, 4e-9)
+            }
+        )
+        .is_err());
+        assert!(synthesize(&psd, &o(256, 4e-9)).is_ok());
+    }
+
+    #[test]
+    fn fixed_amplitudes_give_the_exact_rms_and_a_real_zero_mean_surface() {
+        let psd = SelfAffinePsd::new(
+            0.5,
+            400e-9,
+            Some(200e-9),
+            16e-9,
+            Normalization::RmsHeight(3e-9),
+        )
+        .unwrap();
+        let map = synthesize(
+            &psd,
+            &SynthesisOptions {
+                ny: 96,
+                ..o(128, 4e-9)
+            },
+        )
+        .unwrap();
+        let z = map.heights();
+        let n = z.len() as f64;
+        let mean = z.iter().sum::<f64>() / n;
+        let rms = (z.iter().map(|v| v * v).sum::<f64>() / n).sqrt();
+        assert!(mean.abs() < 1e-12 * rms);
+        assert!((rms / 3e-9 - 1.0).abs() < 1e-12);
+    }
 }

@@ -241,7 +241,7 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
                 .collect(),
         }
     } else if let Some(list) = child(root, "Record3").and_then(|r| child(r, "DataList")) {
-        let mut v = Vec::with_capacity(n);
+        let mut v = Vec::with_capacity(n.min(1 << 20));
         for (k, d) in list
             .children()
             .filter(|c| c.is_element() && c.tag_name().name() == "Datum")
