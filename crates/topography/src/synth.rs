@@ -262,7 +262,7 @@ mod tests {
     fn fixed_amplitudes_give_the_exact_rms_and_a_real_zero_mean_surface() {
         let psd = SelfAffinePsd::new(
             0.5,
-            400e-9,
+            380e-9,
             Some(200e-9),
             16e-9,
             Normalization::RmsHeight(3e-9),
