@@ -35,6 +35,11 @@
 
 #![deny(missing_docs)]
 
+// The README's example is compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 mod detrend;
 mod error;
 mod gw;

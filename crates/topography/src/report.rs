@@ -10,7 +10,7 @@ use crate::error::{Result, TopographyError};
 use crate::gw::{mccool, GwParameters, MCCOOL_SIGMA_CONSTANT};
 use crate::io::{Measurement, Source};
 use crate::map::HeightMap;
-use crate::moments::{finite_difference_moments, radial_psd, Moments, PsdPoint};
+use crate::moments::{finite_difference_moments, radial_psd, spectral_moments, Moments, PsdPoint};
 use crate::stats::{histogram, shape, Histogram, Shape, EXCESS_KURTOSIS_LIMIT, SKEWNESS_LIMIT};
 use crate::summits::{find_summits, summit_statistics, SummitStatistics};
 
@@ -228,6 +228,12 @@ pub struct TopographyReport {
     pub detrending: DetrendSummary,
     /// All moments, with their method and the slope anisotropy.
     pub moments: Moments,
+    /// The same moments from the discrete Fourier spectrum of the detrended map taken as
+    /// periodic (`spectral_moments`): exact for a periodic (synthetic) map, where they
+    /// exceed the finite-difference moments by the difference operators' loss near the
+    /// Nyquist wavevector; biased upwards on a measured map by the jump between opposite
+    /// edges. A diagnostic: the routes use `moments`.
+    pub moments_fourier: Moments,
     /// Slope anisotropy (1 = isotropic).
     pub slope_anisotropy: f64,
     /// Shape of the height distribution.
@@ -574,6 +580,7 @@ pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyRepo
         grid: Grid::of(&c.map),
         detrending: c.summary,
         moments: m,
+        moments_fourier: spectral_moments(&c.map),
         slope_anisotropy: aniso,
         heights: heights_shape,
         sampling,
