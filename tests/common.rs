@@ -45,10 +45,16 @@ pub fn has_null(v: &serde_json::Value) -> bool {
     match v {
         serde_json::Value::Null => true,
         serde_json::Value::Array(a) => a.iter().any(has_null),
-        serde_json::Value::Object(o) => o.values().any(has_null),
+        serde_json::Value::Object(o) => o
+            .iter()
+            .any(|(k, v)| !CONTRACT_NULLS.contains(&k.as_str()) && has_null(v)),
         _ => false,
     }
 }
+
+/// Keys whose null is a public contract (the trust issue): "not accommodated", "no
+/// closing design is free", "the switch closes everywhere or nowhere".
+pub const CONTRACT_NULLS: &[&str] = &["accommodation_cause", "critical_value", "closure_boundary"];
 
 /// A scene of `kind` printed by the binary, with `edits` (key prefix, new line) applied.
 pub fn scene_with(kind: &str, edits: &[(&str, &str)]) -> String {

@@ -186,7 +186,7 @@ impl FeData {
             if fields.len() > names.len() {
                 return Err(data_err(
                     line,
-                    &format!("column {}", names.len() + 1),
+                    &format!("{}", names.len() + 1),
                     DataProblem::ExtraField,
                 ));
             }

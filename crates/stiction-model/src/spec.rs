@@ -870,7 +870,11 @@ impl<'a> Reader<'a> {
                 ),
             )
         })?;
-        let table = if self.scene.get("contact.effective_radius").is_some() {
+        // [contact.effective_radius] is the paper's name for etsion_kadin's constants: with
+        // that law it is its table; with another it is checked as etsion_kadin's and left
+        // unused, so that a scene switches laws by one key
+        let paper_table = self.scene.get("contact.effective_radius").is_some();
+        let table = if paper_table && name == "etsion_kadin" {
             if self.scene.get("contact.plasticity").is_some() {
                 return Err(self
                     .fail(
@@ -882,6 +886,23 @@ impl<'a> Reader<'a> {
             }
             "contact.effective_radius"
         } else {
+            if paper_table {
+                let ek = "etsion_kadin";
+                let params = crate::laws::ETSION_KADIN_PARAMS;
+                let fit = self.law_params("contact.effective_radius", None, ek, params)?;
+                asperity_plastic::EffectiveRadiusFit::new(
+                    fit.triple("c1").unwrap_or_default(),
+                    fit.triple("c2").unwrap_or_default(),
+                )
+                .map_err(|e| {
+                    self.law_error(
+                        "contact.effective_radius",
+                        "contact.plasticity_law",
+                        ek,
+                        e.into(),
+                    )
+                })?;
+            }
             "contact.plasticity"
         };
         let params = self.law_params(table, Some("contact.plasticity"), &name, entry.params())?;

@@ -266,8 +266,8 @@ pub struct SwitchResult {
     pub accommodated_after: Option<usize>,
     /// Why (`saturated`: the impacts still deepen by less than the tolerance;
     /// `non_deepening`: an impact stopped short of an earlier one, so nothing changes
-    /// any more); absent when not accommodated (no output holds a null).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// any more); null when not accommodated (a public contract: the one null of a switch
+    /// result).
     pub accommodation_cause: Option<&'static str>,
     /// The largest pull-out of all cycles (Pa).
     pub largest_pull_out: f64,

@@ -1,0 +1,754 @@
+//! The whole analysis of a height map: both routes, the sampling and scan-size tables,
+//! the Gaussian checks, plot data and the scene fragment.
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use crate::detrend::{detrend, Detrend, DetrendSummary};
+use crate::error::{Result, TopographyError};
+use crate::gw::{mccool, GwParameters, MCCOOL_SIGMA_CONSTANT};
+use crate::io::{Measurement, Source};
+use crate::map::HeightMap;
+use crate::moments::{finite_difference_moments, radial_psd, spectral_moments, Moments, PsdPoint};
+use crate::stats::{histogram, shape, Histogram, Shape, EXCESS_KURTOSIS_LIMIT, SKEWNESS_LIMIT};
+use crate::summits::{find_summits, summit_statistics, SummitStatistics};
+
+/// What the analysis does besides the two routes.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct AnalysisOptions {
+    /// Form removed first (default: the mean plane).
+    pub detrend: Detrend,
+    /// Coarsening factors of the sampling table (default 2, 4, 8; block averaging).
+    pub coarsen: Vec<usize>,
+    /// Scan-size divisors of the scan table (default 2, 4: the map cut into 2 x 2 and 4 x 4
+    /// tiles, each analysed alone, the parameters averaged over the tiles).
+    pub scan_divisors: Vec<usize>,
+    /// Longest side of the height-map picture (default 256).
+    pub plot_side: usize,
+    /// Bins of the height histograms (default 40).
+    pub histogram_bins: usize,
+    /// Logarithmic bins of the radially averaged PSD (default 40; 0 skips the PSD and its FFT).
+    pub psd_bins: usize,
+}
+
+impl Default for AnalysisOptions {
+    fn default() -> Self {
+        AnalysisOptions {
+            detrend: Detrend::Plane,
+            coarsen: vec![2, 4, 8],
+            scan_divisors: vec![2, 4],
+            plot_side: 256,
+            histogram_bins: 40,
+            psd_bins: 40,
+        }
+    }
+}
+
+/// The grid analysed.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Grid {
+    /// Points along x.
+    pub nx: usize,
+    /// Points along y.
+    pub ny: usize,
+    /// Sampling interval along x (m).
+    pub dx: f64,
+    /// Sampling interval along y (m).
+    pub dy: f64,
+    /// Scan size along x, nx dx (m).
+    pub scan_x: f64,
+    /// Scan size along y, ny dy (m).
+    pub scan_y: f64,
+}
+
+impl Grid {
+    fn of(m: &HeightMap) -> Self {
+        Grid {
+            nx: m.nx(),
+            ny: m.ny(),
+            dx: m.dx(),
+            dy: m.dy(),
+            scan_x: m.scan_x(),
+            scan_y: m.scan_y(),
+        }
+    }
+}
+
+/// The spectral route's result (JSON object `spectral`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SpectralRoute {
+    /// sigma_s, asperity_density, radius, offset (SI).
+    #[serde(flatten)]
+    pub gw: GwParameters,
+    /// The method, stated.
+    pub method: &'static str,
+}
+
+/// The summit route's result (JSON object `summits`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SummitRoute {
+    /// sigma_s, asperity_density, radius, offset (SI).
+    #[serde(flatten)]
+    pub gw: GwParameters,
+    /// Number of summits found.
+    pub count: usize,
+    /// Mean summit curvature (1/m).
+    pub mean_curvature: f64,
+    /// Median of the per-summit radii (m), for comparison with `radius`.
+    pub median_radius: f64,
+    /// Skewness of the summit heights (0 for a Gaussian).
+    pub skewness: f64,
+    /// Kurtosis of the summit heights (3 for a Gaussian).
+    pub kurtosis: f64,
+    /// Interior points tied with a neighbour (quantised heights).
+    pub ties: usize,
+    /// The method, stated.
+    pub method: &'static str,
+}
+
+impl SummitRoute {
+    fn from(s: SummitStatistics) -> Self {
+        SummitRoute {
+            gw: s.gw,
+            count: s.count,
+            mean_curvature: s.mean_curvature,
+            median_radius: s.median_radius,
+            skewness: s.skewness,
+            kurtosis: s.kurtosis,
+            ties: s.ties,
+            method: SUMMIT_METHOD,
+        }
+    }
+}
+
+const SPECTRAL_METHOD: &str =
+    "McCool (1986) from the profile moments m0, m2, m4 of the equivalent isotropic \
+surface (finite differences on the grid, averaged over directions): density m4/(6 pi sqrt(3) m2), \
+radius 0.375 sqrt(pi/m4), sigma_s sqrt(1 - 0.8968/alpha) sqrt(m0), offset 4 sqrt(m0/(pi alpha))";
+const SUMMIT_METHOD: &str = "summits = interior grid points higher than their 8 neighbours (ties broken by raster \
+order); sigma_s = std of their heights, offset = their mean height, density = count / interior area, radius = \
+1 / mean of -(z_xx + z_yy)/2 by three-point differences";
+
+/// One row of the sampling or scan-size table: both routes at another sampling interval
+/// or scan size.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ScaleRow {
+    /// Coarsening factor (sampling table) or scan divisor (scan table); 1 for the map itself.
+    pub factor: usize,
+    /// Sampling interval along x (m).
+    pub dx: f64,
+    /// Sampling interval along y (m).
+    pub dy: f64,
+    /// Scan size along x (m).
+    pub scan_x: f64,
+    /// Scan size along y (m).
+    pub scan_y: f64,
+    /// Tiles averaged (1 in the sampling table).
+    pub tiles: usize,
+    /// Rms height (m).
+    pub rms_height: f64,
+    /// m2 (dimensionless).
+    pub m2: f64,
+    /// m4 (1/m^2).
+    pub m4: f64,
+    /// Nayak's alpha.
+    pub alpha: f64,
+    /// The spectral route.
+    pub spectral: GwParameters,
+    /// The summit route (`None` if fewer than 2 summits).
+    pub summits: Option<GwParameters>,
+    /// Summits found (summed over tiles).
+    pub summit_count: usize,
+}
+
+/// A warning with a stable code (for scripts) and a message (for people).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Warning {
+    /// Stable identifier: `non_gaussian_heights`, `non_gaussian_summits`, `anisotropic`,
+    /// `few_summits`, `no_summits`, `narrow_band`, `alpha_below_mccool`, `routes_disagree`,
+    /// `sampling_dependent`, `scan_size_dependent`, `quantized_heights`, `large_tilt`.
+    pub code: &'static str,
+    /// What it means for the GW parameters.
+    pub message: String,
+}
+
+/// A picture-sized height map (m).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PlotMap {
+    /// Points along x.
+    pub nx: usize,
+    /// Points along y.
+    pub ny: usize,
+    /// Spacing along x (m).
+    pub dx: f64,
+    /// Spacing along y (m).
+    pub dy: f64,
+    /// Detrended heights, row-major (m).
+    pub z: Vec<f64>,
+}
+
+/// Data for the plots the CLI draws.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Plots {
+    /// The detrended map, block-averaged to at most `plot_side` points a side.
+    pub height_map: PlotMap,
+    /// Summit heights against the Gaussian N(offset, sigma_s) the model assumes.
+    pub summit_heights: Histogram,
+    /// All heights against N(0, rms height).
+    pub heights: Histogram,
+    /// Radially averaged PSD C(q) (Hann-windowed periodogram).
+    pub psd: Vec<PsdPoint>,
+}
+
+/// The full analysis. The top-level keys `rms_height`, `m0`, `m2`, `m4`, `alpha` and the
+/// objects `spectral` and `summits` (each with `sigma_s`, `asperity_density`, `radius`,
+/// `offset`) are a public contract.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TopographyReport {
+    /// Rms height of the detrended map, sqrt(m0) (m). Not sigma_s.
+    pub rms_height: f64,
+    /// Variance of heights (m^2).
+    pub m0: f64,
+    /// McCool's m2: direction-averaged mean square profile slope.
+    pub m2: f64,
+    /// McCool's m4: direction-averaged mean square profile curvature (1/m^2).
+    pub m4: f64,
+    /// Nayak's bandwidth parameter m0 m4 / m2^2.
+    pub alpha: f64,
+    /// The spectral route.
+    pub spectral: SpectralRoute,
+    /// The summit route (`null` if the map has fewer than 2 summits).
+    pub summits: Option<SummitRoute>,
+    /// Where the map came from, if read from a file.
+    pub source: Option<Source>,
+    /// The grid.
+    pub grid: Grid,
+    /// What was removed before the statistics.
+    pub detrending: DetrendSummary,
+    /// All moments, with their method and the slope anisotropy.
+    pub moments: Moments,
+    /// The same moments from the discrete Fourier spectrum of the detrended map taken as
+    /// periodic (`spectral_moments`): exact for a periodic (synthetic) map, where they
+    /// exceed the finite-difference moments by the difference operators' loss near the
+    /// Nyquist wavevector; biased upwards on a measured map by the jump between opposite
+    /// edges. A diagnostic: the routes use `moments`.
+    pub moments_fourier: Moments,
+    /// Slope anisotropy (1 = isotropic).
+    pub slope_anisotropy: f64,
+    /// Shape of the height distribution.
+    pub heights: Shape,
+    /// Both routes on the map coarsened by block averaging (row 1 is the map).
+    pub sampling: Vec<ScaleRow>,
+    /// Both routes on smaller scans (tiles of the map), averaged over the tiles.
+    pub scan_size: Vec<ScaleRow>,
+    /// Warnings.
+    pub warnings: Vec<Warning>,
+    /// Statements of what is what (heights vs summits, the methods, the caveats).
+    pub notes: Vec<String>,
+    /// Plot data.
+    pub plots: Plots,
+}
+
+struct Core {
+    map: HeightMap,
+    summary: DetrendSummary,
+    moments: Moments,
+    spectral: GwParameters,
+    summits: Option<SummitStatistics>,
+}
+
+fn core(map: &HeightMap, how: Detrend) -> Result<Core> {
+    let (map, summary) = detrend(map, how)?;
+    let moments = finite_difference_moments(&map);
+    if !(moments.m2 > 0.0 && moments.m4 > 0.0) {
+        return Err(TopographyError::param(
+            "height map",
+            format!("m2 = {:e}, m4 = {:e}", moments.m2, moments.m4),
+            "the detrended map is flat (no slope or curvature): nothing to analyse",
+        ));
+    }
+    let spectral = mccool(&moments);
+    let summits = summit_statistics(&map);
+    Ok(Core {
+        map,
+        summary,
+        moments,
+        spectral,
+        summits,
+    })
+}
+
+fn row(c: &Core, factor: usize, tiles: usize) -> ScaleRow {
+    ScaleRow {
+        factor,
+        dx: c.map.dx(),
+        dy: c.map.dy(),
+        scan_x: c.map.scan_x(),
+        scan_y: c.map.scan_y(),
+        tiles,
+        rms_height: c.moments.rms_height(),
+        m2: c.moments.m2,
+        m4: c.moments.m4,
+        alpha: c.moments.alpha(),
+        spectral: c.spectral,
+        summits: c.summits.as_ref().map(|s| s.gw),
+        summit_count: c.summits.as_ref().map_or(0, |s| s.count),
+    }
+}
+
+fn mean_gw(v: &[GwParameters]) -> GwParameters {
+    let n = v.len() as f64;
+    GwParameters {
+        sigma_s: v.iter().map(|g| g.sigma_s).sum::<f64>() / n,
+        asperity_density: v.iter().map(|g| g.asperity_density).sum::<f64>() / n,
+        radius: v.iter().map(|g| g.radius).sum::<f64>() / n,
+        offset: v.iter().map(|g| g.offset).sum::<f64>() / n,
+    }
+}
+
+/// The scan-size row for divisor `d`: every d x d tile analysed alone, parameters averaged.
+fn tiles_row(map: &HeightMap, d: usize, how: Detrend) -> Option<ScaleRow> {
+    let (wx, wy) = (map.nx() / d, map.ny() / d);
+    let mut cores = Vec::new();
+    for tj in 0..d {
+        for ti in 0..d {
+            let tile = map.crop(ti * wx, tj * wy, wx, wy)?;
+            if let Ok(c) = core(&tile, how) {
+                cores.push(c);
+            }
+        }
+    }
+    let first = cores.first()?;
+    let n = cores.len() as f64;
+    let spectral = mean_gw(&cores.iter().map(|c| c.spectral).collect::<Vec<_>>());
+    let with: Vec<GwParameters> = cores
+        .iter()
+        .filter_map(|c| c.summits.as_ref().map(|s| s.gw))
+        .collect();
+    let mut r = row(first, d, cores.len());
+    r.rms_height = cores.iter().map(|c| c.moments.rms_height()).sum::<f64>() / n;
+    r.m2 = cores.iter().map(|c| c.moments.m2).sum::<f64>() / n;
+    r.m4 = cores.iter().map(|c| c.moments.m4).sum::<f64>() / n;
+    r.alpha = cores.iter().map(|c| c.moments.alpha()).sum::<f64>() / n;
+    r.spectral = spectral;
+    r.summits = if with.len() == cores.len() {
+        Some(mean_gw(&with))
+    } else {
+        None
+    };
+    r.summit_count = cores
+        .iter()
+        .map(|c| c.summits.as_ref().map_or(0, |s| s.count))
+        .sum();
+    Some(r)
+}
+
+fn rel_change(a: f64, b: f64) -> f64 {
+    (b / a - 1.0).abs()
+}
+
+/// Analyses a map read from a file (see [`analyze`]); the report carries the source.
+pub fn analyze_measurement(m: &Measurement, opts: &AnalysisOptions) -> Result<TopographyReport> {
+    let mut r = analyze(&m.map, opts)?;
+    r.source = Some(m.source.clone());
+    Ok(r)
+}
+
+/// Analyses a height map: detrending, the moments m0, m2, m4 and alpha, the GW parameters by
+/// both routes, the sampling and scan-size tables, the Gaussian checks, the warnings and the
+/// plot data.
+///
+/// Errors if the map is too small for the detrending order or flat after detrending.
+pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyReport> {
+    let c = core(map, opts.detrend)?;
+    let m = c.moments;
+    let heights_shape = shape(c.map.heights());
+    let mut sampling = vec![row(&c, 1, 1)];
+    for &f in &opts.coarsen {
+        if f <= 1 {
+            continue;
+        }
+        if let Some(coarse) = map.coarsen(f) {
+            if let Ok(cc) = core(&coarse, opts.detrend) {
+                sampling.push(row(&cc, f, 1));
+            }
+        }
+    }
+    let mut scan_size = vec![row(&c, 1, 1)];
+    for &d in &opts.scan_divisors {
+        if d <= 1 {
+            continue;
+        }
+        if let Some(r) = tiles_row(map, d, opts.detrend) {
+            scan_size.push(r);
+        }
+    }
+    let summits = c.summits.clone().map(SummitRoute::from);
+
+    // Warnings.
+    let mut w = Vec::new();
+    let mut warn = |code: &'static str, message: String| w.push(Warning { code, message });
+    if !heights_shape.is_near_gaussian() {
+        warn(
+            "non_gaussian_heights",
+            format!(
+                "height skewness {:.2}, kurtosis {:.2} (Gaussian: 0, 3; limits |S| <= {SKEWNESS_LIMIT}, |K - 3| <= \
+                 {EXCESS_KURTOSIS_LIMIT}): McCool's formulas assume a Gaussian surface; prefer the summit route",
+                heights_shape.skewness, heights_shape.kurtosis
+            ),
+        );
+    }
+    match &summits {
+        None => warn(
+            "no_summits",
+            "fewer than 2 summits on the grid: the summit route is unavailable".to_string(),
+        ),
+        Some(s) => {
+            let sh = Shape {
+                skewness: s.skewness,
+                kurtosis: s.kurtosis,
+            };
+            if !sh.is_near_gaussian() {
+                warn(
+                    "non_gaussian_summits",
+                    format!(
+                        "summit-height skewness {:.2}, kurtosis {:.2} (Gaussian: 0, 3; limits |S| <= {SKEWNESS_LIMIT}, \
+                         |K - 3| <= {EXCESS_KURTOSIS_LIMIT}): the GW model's Gaussian of summit heights misrepresents \
+                         the upper tail that makes the contacts",
+                        s.skewness, s.kurtosis
+                    ),
+                );
+            }
+            if s.count < 100 {
+                warn(
+                    "few_summits",
+                    format!(
+                        "only {} summits: sigma_s and the density carry a statistical error of about {:.0}%",
+                        s.count,
+                        100.0 / (s.count as f64).sqrt()
+                    ),
+                );
+            }
+            let interior = (c.map.nx() - 2) * (c.map.ny() - 2);
+            if s.ties * 20 > interior {
+                warn(
+                    "quantized_heights",
+                    format!(
+                        "{} of {interior} interior points tie with a neighbour: the heights look quantised; summits on \
+                         flat tops are counted once (raster-order tie break)",
+                        s.ties
+                    ),
+                );
+            }
+            let g = (s.gw, c.spectral);
+            let ratio = |a: f64, b: f64| (a / b).max(b / a);
+            let worst = ratio(g.0.sigma_s, g.1.sigma_s)
+                .max(ratio(g.0.asperity_density, g.1.asperity_density))
+                .max(ratio(g.0.radius, g.1.radius));
+            if worst > 2.0 {
+                warn(
+                    "routes_disagree",
+                    format!(
+                        "the two routes differ by a factor {worst:.1} in a parameter (spectral: sigma_s {:.3e} m, \
+                         N {:.3e} 1/m^2, R {:.3e} m; summits: {:.3e}, {:.3e}, {:.3e}): the surface is far from the \
+                         Gaussian isotropic model, or the sampling resolves its summits poorly",
+                        g.1.sigma_s, g.1.asperity_density, g.1.radius, g.0.sigma_s, g.0.asperity_density, g.0.radius
+                    ),
+                );
+            }
+        }
+    }
+    let aniso = m.slope_anisotropy();
+    if aniso > 2.0 {
+        warn(
+            "anisotropic",
+            format!(
+                "the mean square slopes differ by a factor {aniso:.2} between principal directions: McCool's formulas \
+                 are applied to the direction-averaged moments (the equivalent isotropic surface)"
+            ),
+        );
+    }
+    let alpha = m.alpha();
+    if alpha <= MCCOOL_SIGMA_CONSTANT {
+        warn(
+            "alpha_below_mccool",
+            format!("alpha = {alpha:.3} <= 0.8968: McCool's sigma_s is undefined (reported as 0)"),
+        );
+    } else if alpha < 2.0 {
+        warn(
+            "narrow_band",
+            format!(
+                "alpha = {alpha:.2} < 2: a narrow-band (nearly periodic) surface, whose summits are not the \
+                 independent, randomly placed asperities of the GW model"
+            ),
+        );
+    }
+    if let (Some(s1), Some(s2)) = (sampling.first(), sampling.get(1)) {
+        if let (Some(a), Some(b)) = (s1.summits, s2.summits) {
+            let (dn, dr) = (
+                rel_change(a.asperity_density, b.asperity_density),
+                rel_change(a.radius, b.radius),
+            );
+            if dn.max(dr) > 0.25 {
+                warn(
+                    "sampling_dependent",
+                    format!(
+                        "doubling the sampling interval changes the summit density by {:+.0}% and the radius by \
+                         {:+.0}%: the GW parameters describe the surface at this sampling interval, not intrinsically",
+                        100.0 * (b.asperity_density / a.asperity_density - 1.0),
+                        100.0 * (b.radius / a.radius - 1.0)
+                    ),
+                );
+            }
+        }
+    }
+    if let (Some(s1), Some(s2)) = (scan_size.first(), scan_size.get(1)) {
+        let d = rel_change(s1.spectral.sigma_s, s2.spectral.sigma_s);
+        if d > 0.25 {
+            warn(
+                "scan_size_dependent",
+                format!(
+                    "halving the scan size changes sigma_s by {:+.0}%: the long wavelengths of the surface are not \
+                     converged in this scan",
+                    100.0 * (s2.spectral.sigma_s / s1.spectral.sigma_s - 1.0)
+                ),
+            );
+        }
+    }
+    if c.summary.tilt_degrees > 5.0 {
+        warn(
+            "large_tilt",
+            format!(
+                "the removed tilt is {:.1} degrees: check the sample mounting; heights measured on a steep tilt \
+                 are foreshortened",
+                c.summary.tilt_degrees
+            ),
+        );
+    }
+
+    let notes = vec![
+        format!(
+            "heights vs summits: the rms height {:.4e} m describes all points; the GW model needs the summits \
+             (local maxima): their standard deviation sigma_s is smaller, and their mean plane lies 'offset' above \
+             the mean plane of the heights; the model measures separation from the summits' plane",
+            m.rms_height()
+        ),
+        format!("detrending: {} of total degree {} removed (least squares)", c.summary.method, c.summary.order),
+        format!("spectral route: {SPECTRAL_METHOD}"),
+        format!("summit route: {SUMMIT_METHOD}"),
+        "sampling and scan size: GW parameters are not intrinsic to a surface; the tables give both routes on the \
+         map block-averaged by 2, 4, 8 and on 2 x 2 and 4 x 4 tiles (smaller scans)"
+            .to_string(),
+    ];
+
+    let (summit_list, _) = find_summits(&c.map);
+    let sh: Vec<f64> = summit_list.iter().map(|s| s.height).collect();
+    let (sm, ss) = summits
+        .as_ref()
+        .map_or((0.0, 0.0), |s| (s.gw.offset, s.gw.sigma_s));
+    let pic = c.map.downsample(opts.plot_side);
+    let plots = Plots {
+        height_map: PlotMap {
+            nx: pic.nx(),
+            ny: pic.ny(),
+            dx: pic.dx(),
+            dy: pic.dy(),
+            z: pic.into_heights(),
+        },
+        summit_heights: histogram(&sh, opts.histogram_bins, sm, ss),
+        heights: histogram(c.map.heights(), opts.histogram_bins, 0.0, m.rms_height()),
+        psd: if opts.psd_bins == 0 {
+            Vec::new()
+        } else {
+            radial_psd(&c.map, opts.psd_bins)
+        },
+    };
+
+    Ok(TopographyReport {
+        rms_height: m.rms_height(),
+        m0: m.m0,
+        m2: m.m2,
+        m4: m.m4,
+        alpha,
+        spectral: SpectralRoute {
+            gw: c.spectral,
+            method: SPECTRAL_METHOD,
+        },
+        summits,
+        source: None,
+        grid: Grid::of(&c.map),
+        detrending: c.summary,
+        moments: m,
+        moments_fourier: spectral_moments(&c.map),
+        slope_anisotropy: aniso,
+        heights: heights_shape,
+        sampling,
+        scan_size,
+        warnings: w,
+        notes,
+        plots,
+    })
+}
+
+/// Which route's parameters go into a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Route {
+    /// McCool's formulas on the moments.
+    Spectral,
+    /// The summits found on the grid.
+    Summits,
+}
+
+/// The `[surface]` (sigma_s, asperity_density) and `[contact]` (radius) scene fragment of
+/// the report, as TOML text, with the method, the sampling and the caveats in comments.
+/// Errors if `route` is `Summits` and the map had fewer than 2 summits.
+pub fn scene_fragment(report: &TopographyReport, route: Route) -> Result<String> {
+    let (gw, method) = match route {
+        Route::Spectral => (
+            report.spectral.gw,
+            "spectral route (McCool 1986 from m0, m2, m4)",
+        ),
+        Route::Summits => match &report.summits {
+            Some(s) => (s.gw, "summit route (8-neighbour maxima of the grid)"),
+            None => {
+                return Err(TopographyError::param(
+                    "route",
+                    "summits",
+                    "the map has fewer than 2 summits; use the spectral route",
+                ))
+            }
+        },
+    };
+    let other = match route {
+        Route::Spectral => report.summits.as_ref().map(|s| ("summits", s.gw)),
+        Route::Summits => Some(("spectral", report.spectral.gw)),
+    };
+    let g = &report.grid;
+    let mut s = String::new();
+    let src = report
+        .source
+        .as_ref()
+        .map_or("a height map".to_string(), |s| s.path.clone());
+    let _ = writeln!(
+        s,
+        "# GW parameters of {src} (stiction topography), {method}."
+    );
+    let _ = writeln!(
+        s,
+        "# Grid {} x {} at dx = {:.4e} m, dy = {:.4e} m (scan {:.4e} x {:.4e} m); {} of degree {} removed.",
+        g.nx, g.ny, g.dx, g.dy, g.scan_x, g.scan_y, report.detrending.method, report.detrending.order
+    );
+    let _ = writeln!(
+        s,
+        "# rms height {:.4e} m (all points); sigma_s below is the std of the summit heights, whose mean plane",
+        report.rms_height
+    );
+    let _ = writeln!(
+        s,
+        "# lies {:.4e} m above the mean plane: the model measures separation from it.",
+        gw.offset
+    );
+    if let Some((name, o)) = other {
+        let _ = writeln!(
+            s,
+            "# The {name} route gives sigma_s = {:.4e} m, asperity_density = {:.4e} 1/m^2, radius = {:.4e} m.",
+            o.sigma_s, o.asperity_density, o.radius
+        );
+    }
+    let _ = writeln!(
+        s,
+        "# GW parameters depend on the sampling interval (docs/topography.md); coarsened:"
+    );
+    for r in report.sampling.iter().skip(1) {
+        let p = match route {
+            Route::Spectral => Some(r.spectral),
+            Route::Summits => r.summits,
+        };
+        if let Some(p) = p {
+            let _ = writeln!(
+                s,
+                "#   x{} (dx = {:.3e} m): sigma_s = {:.4e} m, asperity_density = {:.4e} 1/m^2, radius = {:.4e} m",
+                r.factor, r.dx, p.sigma_s, p.asperity_density, p.radius
+            );
+        }
+    }
+    for wng in &report.warnings {
+        let _ = writeln!(s, "# warning [{}]: {}", wng.code, wng.message);
+    }
+    let _ = writeln!(
+        s,
+        "# For two rough surfaces, analyse their sum surface (or combine the moments)."
+    );
+    let _ = writeln!(s);
+    let line =
+        |key: &str, v: f64, comment: &str| format!("{:<40} # {comment}", format!("{key} = {v:e}"));
+    let _ = writeln!(s, "[surface]");
+    let _ = writeln!(
+        s,
+        "{}",
+        line("sigma_s", gw.sigma_s, "std. dev. of summit heights (m)")
+    );
+    let _ = writeln!(
+        s,
+        "{}",
+        line("asperity_density", gw.asperity_density, "N (1/m^2)")
+    );
+    let _ = writeln!(s);
+    let _ = writeln!(s, "[contact]");
+    let _ = writeln!(
+        s,
+        "{}",
+        line(
+            "radius",
+            gw.radius,
+            "summit radius R (m), 1 / mean summit curvature"
+        )
+    );
+    Ok(s)
+}
+
+/// GW parameters of the sum surface of two independent rough surfaces analysed separately
+/// (on different grids, say): the gap between two rough surfaces equals the gap between a
+/// flat and their sum surface z1 + z2.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SumSurface {
+    /// The moments of the sum: every moment adds (the spectra of independent surfaces add),
+    /// exactly.
+    pub moments: Moments,
+    /// Rms height of the sum (m).
+    pub rms_height: f64,
+    /// Nayak's alpha of the sum.
+    pub alpha: f64,
+    /// McCool's parameters of the summed moments: the consistent route.
+    pub spectral: GwParameters,
+    /// The customary rule on the summit parameters of each: sigma_s = sqrt(s1^2 + s2^2),
+    /// 1/R = 1/R1 + 1/R2, offset o1 + o2, and the density of the summed moments (no rule
+    /// combines densities). An approximation: summits of the sum are not sums of summits.
+    pub parameter_rule: Option<GwParameters>,
+}
+
+impl SumSurface {
+    /// The sum surface of two analysed surfaces.
+    pub fn from_reports(a: &TopographyReport, b: &TopographyReport) -> SumSurface {
+        let moments = a.moments.sum(&b.moments);
+        let spectral = mccool(&moments);
+        let parameter_rule = match (&a.summits, &b.summits) {
+            (Some(x), Some(y)) => Some(GwParameters {
+                sigma_s: x.gw.sigma_s.hypot(y.gw.sigma_s),
+                asperity_density: spectral.asperity_density,
+                radius: 1.0 / (1.0 / x.gw.radius + 1.0 / y.gw.radius),
+                offset: x.gw.offset + y.gw.offset,
+            }),
+            _ => None,
+        };
+        SumSurface {
+            rms_height: moments.rms_height(),
+            alpha: moments.alpha(),
+            moments,
+            spectral,
+            parameter_rule,
+        }
+    }
+}
