@@ -486,7 +486,7 @@ mod tests {
             (
                 format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,1e-8,1,loading,7\n"),
                 3,
-                "column 5",
+                "5",
             ),
             (
                 format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,2.1e-8,1,loading\n"),

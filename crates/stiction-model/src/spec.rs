@@ -905,7 +905,7 @@ impl<'a> Reader<'a> {
             }
             "contact.plasticity"
         };
-        let params = self.law_params(table, Some("contact.plasticity"), &name, entry.params())?;
+        let params = self.law_params(table, None, &name, entry.params())?;
         let law = entry
             .build(&LawContext {
                 pair: &pair,
