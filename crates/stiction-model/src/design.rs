@@ -227,7 +227,20 @@ pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, Model
         ));
     };
     let spring = matches!(base.switch.drive, Drive::Spring { .. });
+    let per_length = base.switch.spring_constant.is_some();
     match field {
+        "switch.k_s" if per_length => {
+            return fail(
+                "switch.k_s conflicts with the scene's drive: it gives switch.spring_constant over switch.electrode_area; vary switch.spring_constant (or give k_s instead)"
+                    .into(),
+            )
+        }
+        "switch.spring_constant" if !per_length => {
+            return fail(
+                "switch.spring_constant conflicts with the scene's drive: give `spring_constant = <N/m>` with `electrode_area = <m^2>` instead of k_s or impact_energy in [switch] to vary it, or vary switch.k_s"
+                    .into(),
+            )
+        }
         "switch.k_s" | "switch.voltage" if !spring => {
             return fail(format!(
                 "{field} conflicts with the scene's drive: it gives switch.impact_energy, from which K_s is derived (at U = V_PI); give `k_s = <Pa/m>` instead of `impact_energy` in [switch] to vary {field}{}",
