@@ -10,6 +10,7 @@ pub mod md;
 pub mod print;
 pub mod surface;
 pub mod switch;
+pub mod topography;
 
 use crate::error::Error;
 use crate::output::{self, OutputSet};

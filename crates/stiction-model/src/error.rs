@@ -172,6 +172,10 @@ pub enum ModelError {
     /// `calibrate`.
     #[error(transparent)]
     Calibrate(#[from] calibrate::CalibError),
+    /// `topography`: a height map that cannot be read or analysed (always bad input: the
+    /// crate refuses what it cannot use and says why).
+    #[error(transparent)]
+    Topography(#[from] topography::TopographyError),
     /// An error while running a scene, with the scene's file.
     #[error("{file}: {source}")]
     InScene {
@@ -248,6 +252,7 @@ impl Categorized for ModelError {
                 }
             }
             ModelError::Calibrate(e) => e.category(),
+            ModelError::Topography(_) => Category::Input,
             ModelError::InScene { source, .. } => source.category(),
         }
     }
