@@ -86,18 +86,14 @@ impl PyContactLaw {
     /// Reads a law file (law.json of `stiction law` or `stiction.tabulate_law`).
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
-        let law = py
-            .detach(|| ContactLaw::from_path(&path))
-            .map_err(law_error)?;
+        let law = crate::pool::detach(py, || ContactLaw::from_path(&path)).map_err(law_error)?;
         Ok(Self { law })
     }
 
     /// A law from the text of a law.json.
     #[staticmethod]
     fn from_json(py: Python<'_>, text: &str) -> PyResult<Self> {
-        let law = py
-            .detach(|| ContactLaw::from_json_str(text))
-            .map_err(law_error)?;
+        let law = crate::pool::detach(py, || ContactLaw::from_json_str(text)).map_err(law_error)?;
         Ok(Self { law })
     }
 
@@ -131,7 +127,7 @@ impl PyContactLaw {
         };
         let law = &self.law;
         let n = d.len();
-        let out = py.detach(|| -> Result<_, LawError> {
+        let out = crate::pool::detach(py, || -> Result<_, LawError> {
             let mut p = Vec::with_capacity(n);
             let mut t = Vec::with_capacity(n);
             let mut m = Vec::with_capacity(n);
@@ -166,7 +162,13 @@ impl PyContactLaw {
         py: Python<'py>,
         d: &Bound<'py, PyAny>,
         state: Option<&Bound<'py, PyDict>>,
-    ) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>, Py<PyAny>, Bound<'py, PyDict>)> {
+    ) -> PyResult<(
+        Py<PyAny>,
+        Py<PyAny>,
+        Py<PyAny>,
+        Py<PyAny>,
+        Bound<'py, PyDict>,
+    )> {
         let d = ArrayIn::new(d)?;
         let mut st = State::VIRGIN;
         if let Some(s) = state {
@@ -186,7 +188,7 @@ impl PyContactLaw {
             }
         }
         let law = &self.law;
-        let out = py.detach(|| -> Result<_, LawError> {
+        let out = crate::pool::detach(py, || -> Result<_, LawError> {
             let n = d.len();
             let (mut p, mut t, mut m, mut r) = (
                 Vec::with_capacity(n),
@@ -227,14 +229,13 @@ impl PyContactLaw {
     ) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
         let d = ArrayIn::new(d)?;
         let law = &self.law;
-        let v = py
-            .detach(|| {
-                d.values
-                    .iter()
-                    .map(|&x| law.virgin_pressure(x))
-                    .collect::<Result<Vec<_>, _>>()
-            })
-            .map_err(law_error)?;
+        let v = crate::pool::detach(py, || {
+            d.values
+                .iter()
+                .map(|&x| law.virgin_pressure(x))
+                .collect::<Result<Vec<_>, _>>()
+        })
+        .map_err(law_error)?;
         let (p, s): (Vec<f64>, Vec<f64>) = v.into_iter().unzip();
         Ok((array_out(py, p, &d.shape)?, array_out(py, s, &d.shape)?))
     }
@@ -302,10 +303,7 @@ impl PyContactLaw {
         let py = slf.py();
         let text = slf.get().law.to_json_string();
         let ctor = py.get_type::<PyContactLaw>().getattr("from_json")?;
-        PyTuple::new(
-            py,
-            [ctor.into_any(), PyTuple::new(py, [text])?.into_any()],
-        )
+        PyTuple::new(py, [ctor.into_any(), PyTuple::new(py, [text])?.into_any()])
     }
 
     fn __repr__(&self) -> String {
@@ -348,13 +346,12 @@ pub fn tabulate_law(
         accuracy: accuracy_arg(accuracy)?,
     };
     options.check().or_raise()?;
-    let r = py
-        .detach(move || -> Result<_, ModelError> {
-            let spec = Spec::new(&scene, &registry())?;
-            let ls = LawScene::of(&spec)?;
-            law::tabulate(ls, &options, &Silent)
-        })
-        .or_raise()?;
+    let r = crate::pool::detach(py, move || -> Result<_, ModelError> {
+        let spec = Spec::new(&scene, &registry())?;
+        let ls = LawScene::of(&spec)?;
+        law::tabulate(ls, &options, &Silent)
+    })
+    .or_raise()?;
     let summary = result_to_py(py, &r)?;
     Ok((summary, PyContactLaw { law: r.law }))
 }

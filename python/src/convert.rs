@@ -75,7 +75,7 @@ fn is_scalar(v: &Value) -> bool {
 
 fn array_to_py<'py>(py: Python<'py>, a: &[Value]) -> PyResult<Bound<'py, PyAny>> {
     if !a.is_empty() && a.iter().all(|x| matches!(x, Value::Number(_))) {
-        return Ok(column(py, a.iter().map(Some).collect::<Vec<_>>().as_slice())?);
+        return column(py, a.iter().map(Some).collect::<Vec<_>>().as_slice());
     }
     let flat_records = !a.is_empty()
         && a.iter()
@@ -120,7 +120,10 @@ fn column<'py>(py: Python<'py>, cells: &[Option<&Value>]) -> PyResult<Bound<'py,
             .collect();
         return Ok(PyArray1::from_vec(py, v).into_any());
     }
-    if cells.iter().all(|c| c.is_none_or(|v| as_number(v).is_some())) {
+    if cells
+        .iter()
+        .all(|c| c.is_none_or(|v| as_number(v).is_some()))
+    {
         let v: Vec<f64> = cells
             .iter()
             .map(|c| c.and_then(as_number).unwrap_or(f64::NAN))
@@ -153,7 +156,11 @@ pub fn py_to_json(obj: &Bound<'_, PyAny>, file: &str, at: &str) -> PyResult<Valu
     let bad = |what: String| {
         crate::errors::raise(ModelError::Scene(SceneError::Field {
             file: file.to_string(),
-            key: if at.is_empty() { "(top)".into() } else { at.into() },
+            key: if at.is_empty() {
+                "(top)".into()
+            } else {
+                at.into()
+            },
             value: what,
             line: String::new(),
             allowed: "a scene value: a number, a string, a boolean, a list or a table".into(),
@@ -287,9 +294,11 @@ impl ArrayIn {
 /// Values computed for `like`'s points, as an array of its shape (a float for a scalar).
 pub fn array_out(py: Python<'_>, values: Vec<f64>, like: &[usize]) -> PyResult<Py<PyAny>> {
     if like.is_empty() {
-        return Ok(PyFloat::new(py, values.first().copied().unwrap_or(f64::NAN))
-            .into_any()
-            .unbind());
+        return Ok(
+            PyFloat::new(py, values.first().copied().unwrap_or(f64::NAN))
+                .into_any()
+                .unbind(),
+        );
     }
     let a = PyArray1::from_vec(py, values);
     Ok(a.reshape(like.to_vec())?.into_any().unbind())

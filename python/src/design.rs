@@ -36,9 +36,10 @@ pub fn design_threshold(
     let scene = scene_from_py(scene)?;
     let acc = accuracy_arg(accuracy)?;
     let vary = vary.to_string();
-    let r = py
-        .detach(move || design::threshold(&scene, &registry(), &vary, from_, to, acc))
-        .or_raise()?;
+    let r = crate::pool::detach(py, move || {
+        design::threshold(&scene, &registry(), &vary, from_, to, acc)
+    })
+    .or_raise()?;
     let out = result_to_py(py, &r)?;
     let d = out.bind(py).cast::<PyDict>()?;
     d.set_item("warnings", warnings_to_py(py, &r.warnings)?)?;
@@ -125,18 +126,10 @@ pub fn design_map(
     let scene = scene_from_py(scene)?;
     let acc = accuracy_arg(accuracy)?;
     let shard = shard.map(str::to_string);
-    let r = py
-        .detach(move || {
-            design::map(
-                &scene,
-                &registry(),
-                &vary,
-                shard.as_deref(),
-                acc,
-                &Silent,
-            )
-        })
-        .or_raise()?;
+    let r = crate::pool::detach(py, move || {
+        design::map(&scene, &registry(), &vary, shard.as_deref(), acc, &Silent)
+    })
+    .or_raise()?;
     Ok(PyMap::of(r))
 }
 
@@ -156,11 +149,17 @@ pub fn design_map_plan(
     let scene = scene_from_py(scene)?;
     let acc = accuracy_arg(accuracy)?;
     let shard = shard.map(str::to_string);
-    let (base, request) = py
-        .detach(move || design::map_request(&scene, &registry(), &vary, shard.as_deref(), acc))
-        .or_raise()?;
-    let text = toml::to_string(base.tree())
-        .map_err(|e| argument("scene", base.file().to_string(), format!("writable as TOML: {e}")))?;
+    let (base, request) = crate::pool::detach(py, move || {
+        design::map_request(&scene, &registry(), &vary, shard.as_deref(), acc)
+    })
+    .or_raise()?;
+    let text = toml::to_string(base.tree()).map_err(|e| {
+        argument(
+            "scene",
+            base.file().to_string(),
+            format!("writable as TOML: {e}"),
+        )
+    })?;
     let grid = &request.grid;
     let indices: Vec<usize> = match request.shard {
         Some(s) => s.indices(grid.len()).collect(),
@@ -190,13 +189,21 @@ type Answer = (
     Vec<(String, String, bool)>,
 );
 
+/// An [`Answer`] as the assembly reads it back.
+type AnswerIn<'py> = (
+    String,
+    Option<Bound<'py, PyAny>>,
+    Option<String>,
+    Vec<(String, String, bool)>,
+);
+
 /// One design point, as a worker evaluates it: `base` the plan's TOML text, `values` the
 /// point's fields and values. The library's evaluator (`Evaluator::result` reduced by
 /// `design_point`), with the GIL released; a panic is answered as the map would record it.
 #[pyfunction]
 pub fn design_point(py: Python<'_>, base: &str, values: Vec<(String, f64)>) -> PyResult<Answer> {
     let scene = Scene::from_toml_str(design::POINT, base).or_raise()?;
-    let answer = py.detach(move || {
+    let answer = crate::pool::detach(py, move || {
         let args: Vec<(&str, f64)> = values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
         let registry = registry();
         let ev = Evaluator::new(scene, &registry);
@@ -267,10 +274,7 @@ pub fn design_map_assemble(
     type Got = (Result<DesignPoint, PointError>, Vec<Warning>);
     let mut got: HashMap<Vec<u64>, Got> = HashMap::new();
     for item in answers.iter() {
-        let (index, (status, point, message, warnings)): (
-            usize,
-            (String, Option<Bound<'_, PyAny>>, Option<String>, Vec<(String, String, bool)>),
-        ) = item.extract()?;
+        let (index, (status, point, message, warnings)): (usize, AnswerIn<'_>) = item.extract()?;
         if index >= request.grid.len() {
             return Err(argument(
                 "answers",
@@ -282,7 +286,11 @@ pub fn design_map_assemble(
             ("ok", Some(p)) => {
                 let v = py_to_json(&p, "<answer>", "point")?;
                 let d: DesignPoint = serde_json::from_value(v).map_err(|e| {
-                    argument("answers", format!("point {index}"), format!("a design point: {e}"))
+                    argument(
+                        "answers",
+                        format!("point {index}"),
+                        format!("a design point: {e}"),
+                    )
                 })?;
                 Ok(d)
             }
@@ -360,7 +368,9 @@ pub fn design_merge(parts: &Bound<'_, PyList>) -> PyResult<PyMap> {
             shards.push((path.display().to_string(), map));
         }
     }
-    let map = design_sweep::merge(shards).map_err(ModelError::from).or_raise()?;
+    let map = design_sweep::merge(shards)
+        .map_err(ModelError::from)
+        .or_raise()?;
     Ok(PyMap {
         map,
         warnings: Vec::new(),

@@ -79,16 +79,15 @@ pub fn maugis_kim_force(
     let d = ArrayIn::new(delta)?;
     let p = core_path(path, from_, None)?;
     let values = &d.values;
-    let forces = py
-        .detach(|| -> Result<Vec<f64>, ModelError> {
-            let curve = md::curve_for(lam)?;
-            let starts: Vec<usize> = (0..values.len()).step_by(CHUNK).collect();
-            let chunks = par::map(&starts, |&s| {
-                md::forces(&curve, &values[s..(s + CHUNK).min(values.len())], p)
-            })?;
-            Ok(chunks.into_iter().flatten().collect())
-        })
-        .or_raise()?;
+    let forces = crate::pool::detach(py, || -> Result<Vec<f64>, ModelError> {
+        let curve = md::curve_for(lam)?;
+        let starts: Vec<usize> = (0..values.len()).step_by(CHUNK).collect();
+        let chunks = par::map(&starts, |&s| {
+            md::forces(&curve, &values[s..(s + CHUNK).min(values.len())], p)
+        })?;
+        Ok(chunks.into_iter().flatten().collect())
+    })
+    .or_raise()?;
     array_out(py, forces, &d.shape)
 }
 
@@ -118,7 +117,9 @@ impl PyAdhesionLaw {
         Ok(Self {
             law: Arc::new(law),
             name: "maugis_kim".into(),
-            description: format!("k={k:e} Pa, work_of_adhesion={work_of_adhesion:e} J/m^2, z0={z0:e} m"),
+            description: format!(
+                "k={k:e} Pa, work_of_adhesion={work_of_adhesion:e} J/m^2, z0={z0:e} m"
+            ),
         })
     }
 
@@ -151,7 +152,9 @@ impl PyAdhesionLaw {
         Ok(Self {
             law: Arc::new(law),
             name: "dmt".into(),
-            description: format!("k={k:e} Pa, work_of_adhesion={work_of_adhesion:e} J/m^2, z0={z0:e} m"),
+            description: format!(
+                "k={k:e} Pa, work_of_adhesion={work_of_adhesion:e} J/m^2, z0={z0:e} m"
+            ),
         })
     }
 
@@ -171,7 +174,7 @@ impl PyAdhesionLaw {
     #[staticmethod]
     fn of_scene(py: Python<'_>, scene: &Bound<'_, PyAny>) -> PyResult<Self> {
         let scene = scene_from_py(scene)?;
-        let spec = py.detach(move || Spec::new(&scene, &registry())).or_raise()?;
+        let spec = crate::pool::detach(py, move || Spec::new(&scene, &registry())).or_raise()?;
         let c = spec.contact();
         Ok(Self {
             law: c.adhesion.law.clone(),
@@ -208,13 +211,12 @@ impl PyAdhesionLaw {
         r.broadcast_to("radius", &d, "delta")?;
         let p = core_path(path, from_, None)?;
         let law = &self.law;
-        let f = py
-            .detach(|| {
-                par_points(d.len(), |i| {
-                    law.force(r.at(i), d.values[i], p).map_err(ModelError::from)
-                })
+        let f = crate::pool::detach(py, || {
+            par_points(d.len(), |i| {
+                law.force(r.at(i), d.values[i], p).map_err(ModelError::from)
             })
-            .or_raise()?;
+        })
+        .or_raise()?;
         array_out(py, f, &d.shape)
     }
 
@@ -222,12 +224,17 @@ impl PyAdhesionLaw {
     /// into contact on approach and out of contact on retraction.
     fn jumps(&self, py: Python<'_>, radius: f64) -> PyResult<(f64, f64)> {
         let law = &self.law;
-        let j = py.detach(|| law.jumps(radius)).map_err(ModelError::from).or_raise()?;
+        let j = crate::pool::detach(py, || law.jumps(radius))
+            .map_err(ModelError::from)
+            .or_raise()?;
         Ok((j.jump_in, j.jump_out))
     }
 
     fn __repr__(&self) -> String {
-        format!("<stiction.AdhesionLaw {} ({})>", self.name, self.description)
+        format!(
+            "<stiction.AdhesionLaw {} ({})>",
+            self.name, self.description
+        )
     }
 }
 
@@ -246,9 +253,7 @@ pub struct PyAsperity {
 impl PyAsperity {
     fn history(delta_max: Option<&ArrayIn>, i: usize) -> AsperityHistory {
         match delta_max {
-            Some(a) => AsperityHistory {
-                delta_max: a.at(i),
-            },
+            Some(a) => AsperityHistory { delta_max: a.at(i) },
             None => AsperityHistory::VIRGIN,
         }
     }
@@ -262,7 +267,7 @@ impl PyAsperity {
     #[pyo3(signature = (scene, elastic = false))]
     fn new(py: Python<'_>, scene: &Bound<'_, PyAny>, elastic: bool) -> PyResult<Self> {
         let scene = scene_from_py(scene)?;
-        let spec = py.detach(move || Spec::new(&scene, &registry())).or_raise()?;
+        let spec = crate::pool::detach(py, move || Spec::new(&scene, &registry())).or_raise()?;
         let c = spec.contact();
         Ok(Self {
             asperity: if elastic {
@@ -314,24 +319,23 @@ impl PyAsperity {
         };
         let a = &self.asperity;
         let dm_ref = dm.as_ref();
-        let f = py
-            .detach(|| {
-                par_points(d.len(), |i| {
-                    let hist = Self::history(dm_ref, i);
-                    let p = if retract {
-                        Path::Retract {
-                            from: hist.delta_max,
-                        }
-                    } else {
-                        match (path, from_) {
-                            ("retract", Some(f)) => Path::Retract { from: f },
-                            _ => Path::Approach,
-                        }
-                    };
-                    a.force(d.values[i], hist, p).map_err(ModelError::from)
-                })
+        let f = crate::pool::detach(py, || {
+            par_points(d.len(), |i| {
+                let hist = Self::history(dm_ref, i);
+                let p = if retract {
+                    Path::Retract {
+                        from: hist.delta_max,
+                    }
+                } else {
+                    match (path, from_) {
+                        ("retract", Some(f)) => Path::Retract { from: f },
+                        _ => Path::Approach,
+                    }
+                };
+                a.force(d.values[i], hist, p).map_err(ModelError::from)
             })
-            .or_raise()?;
+        })
+        .or_raise()?;
         array_out(py, f, &d.shape)
     }
 
@@ -344,16 +348,15 @@ impl PyAsperity {
     ) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
         let dm = ArrayIn::new(delta_max)?;
         let a = &self.asperity;
-        let res = py
-            .detach(|| {
-                let idx: Vec<usize> = (0..dm.len()).collect();
-                par::map(&idx, |&i| {
-                    a.pull_off(dm.values[i])
-                        .map(|p| (p.force, p.delta))
-                        .map_err(ModelError::from)
-                })
+        let res = crate::pool::detach(py, || {
+            let idx: Vec<usize> = (0..dm.len()).collect();
+            par::map(&idx, |&i| {
+                a.pull_off(dm.values[i])
+                    .map(|p| (p.force, p.delta))
+                    .map_err(ModelError::from)
             })
-            .or_raise()?;
+        })
+        .or_raise()?;
         let (f, d): (Vec<f64>, Vec<f64>) = res.into_iter().unzip();
         Ok((array_out(py, f, &dm.shape)?, array_out(py, d, &dm.shape)?))
     }
@@ -370,7 +373,10 @@ impl PyAsperity {
         let states: Vec<_> = dm
             .values
             .iter()
-            .map(|&x| self.asperity.plastic_state(AsperityHistory { delta_max: x }))
+            .map(|&x| {
+                self.asperity
+                    .plastic_state(AsperityHistory { delta_max: x })
+            })
             .collect();
         let d = PyDict::new(py);
         d.set_item(
@@ -383,7 +389,11 @@ impl PyAsperity {
         )?;
         d.set_item(
             "extrapolated",
-            bool_array_out(py, states.iter().map(|s| s.extrapolated).collect(), &dm.shape)?,
+            bool_array_out(
+                py,
+                states.iter().map(|s| s.extrapolated).collect(),
+                &dm.shape,
+            )?,
         )?;
         Ok(d)
     }
@@ -392,9 +402,13 @@ impl PyAsperity {
     /// virgin).
     #[pyo3(signature = (delta_max = None))]
     fn jumps(&self, py: Python<'_>, delta_max: Option<f64>) -> PyResult<(f64, f64)> {
-        let hist = delta_max.map_or(AsperityHistory::VIRGIN, |d| AsperityHistory { delta_max: d });
+        let hist = delta_max.map_or(AsperityHistory::VIRGIN, |d| AsperityHistory {
+            delta_max: d,
+        });
         let a = &self.asperity;
-        let j = py.detach(|| a.jumps(hist)).map_err(ModelError::from).or_raise()?;
+        let j = crate::pool::detach(py, || a.jumps(hist))
+            .map_err(ModelError::from)
+            .or_raise()?;
         Ok((j.jump_in, j.jump_out))
     }
 
@@ -455,7 +469,7 @@ impl PySurface {
         Self::path_at(path, from, d_min.at(0))?;
         let gw = &self.gw;
         let idx: Vec<usize> = (0..d.len()).collect();
-        py.detach(|| {
+        crate::pool::detach(py, || {
             par::map(&idx, |&i| {
                 let dm = d_min.at(i);
                 let p = match (path, from) {
@@ -485,25 +499,24 @@ impl PySurface {
         let scene = scene_from_py(scene)?;
         let acc = accuracy_arg(accuracy)?;
         let file = scene.file().to_string();
-        let (gw, accuracy, sigma_s) = py
-            .detach(move || -> Result<_, ModelError> {
-                let spec = Spec::new(&scene, &registry())?;
-                let (common, c, roughness) = match &spec {
-                    Spec::Switch(s) => (&s.common, &s.contact, s.roughness),
-                    Spec::Surface(s) => (&s.common, &s.contact, s.roughness),
-                    _ => {
-                        return Err(ModelError::argument(
-                            "scene",
-                            file,
-                            "a switch or surface scene (an asperity scene has no rough surface)",
-                        ))
-                    }
-                };
-                let accuracy = acc.unwrap_or(common.accuracy);
-                let gw = rough_surface(c, roughness, accuracy, 0.0, elastic)?;
-                Ok((gw, accuracy, roughness.sigma_s))
-            })
-            .or_raise()?;
+        let (gw, accuracy, sigma_s) = crate::pool::detach(py, move || -> Result<_, ModelError> {
+            let spec = Spec::new(&scene, &registry())?;
+            let (common, c, roughness) = match &spec {
+                Spec::Switch(s) => (&s.common, &s.contact, s.roughness),
+                Spec::Surface(s) => (&s.common, &s.contact, s.roughness),
+                _ => {
+                    return Err(ModelError::argument(
+                        "scene",
+                        file,
+                        "a switch or surface scene (an asperity scene has no rough surface)",
+                    ))
+                }
+            };
+            let accuracy = acc.unwrap_or(common.accuracy);
+            let gw = rough_surface(c, roughness, accuracy, 0.0, elastic)?;
+            Ok((gw, accuracy, roughness.sigma_s))
+        })
+        .or_raise()?;
         Ok(Self {
             gw,
             accuracy,
@@ -589,7 +602,7 @@ impl PySurface {
         let dm = d_min.unwrap_or(f64::INFINITY);
         let p = Self::path_at(path, from_, dm)?;
         let gw = &self.gw;
-        py.detach(|| gw.reach(&surface_history(dm), p))
+        crate::pool::detach(py, || gw.reach(&surface_history(dm), p))
             .map_err(ModelError::from)
             .or_raise()
     }
@@ -600,10 +613,11 @@ impl PySurface {
     fn pull_out<'py>(&self, py: Python<'py>, d_min: f64) -> PyResult<Bound<'py, PyDict>> {
         let gw = &self.gw;
         let precision = self.accuracy.precision();
-        let u = py
-            .detach(|| stiction_model::switch_1d::unload(gw, &surface_history(d_min), d_min, 0, precision))
-            .map_err(ModelError::from)
-            .or_raise()?;
+        let u = crate::pool::detach(py, || {
+            stiction_model::switch_1d::unload(gw, &surface_history(d_min), d_min, 0, precision)
+        })
+        .map_err(ModelError::from)
+        .or_raise()?;
         let d = PyDict::new(py);
         d.set_item("pressure", u.pull_out_pressure)?;
         d.set_item("separation", u.pull_out_separation)?;

@@ -13,6 +13,7 @@ mod convert;
 mod design;
 mod errors;
 mod laws;
+mod pool;
 mod run;
 mod scene;
 

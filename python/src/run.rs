@@ -57,22 +57,21 @@ pub fn run(
     accuracy: Option<&str>,
 ) -> PyResult<(&'static str, Py<PyAny>)> {
     let scene = with_accuracy(scene_from_py(scene)?, accuracy)?;
-    let ran = py
-        .detach(move || -> Result<Ran, ModelError> {
-            Ok(match Spec::new(&scene, &registry())? {
-                Spec::Asperity(s) => Ran::Asperity(asperity::run(&s)?),
-                Spec::Surface(s) => Ran::Surface(surface::run(&s)?),
-                Spec::Switch(s) => Ran::Switch(SwitchModel::build(&s)?.run(&Silent)?),
-                _ => {
-                    return Err(ModelError::argument(
-                        "scene",
-                        scene.file(),
-                        "an asperity, surface or switch scene",
-                    ))
-                }
-            })
+    let ran = crate::pool::detach(py, move || -> Result<Ran, ModelError> {
+        Ok(match Spec::new(&scene, &registry())? {
+            Spec::Asperity(s) => Ran::Asperity(asperity::run(&s)?),
+            Spec::Surface(s) => Ran::Surface(surface::run(&s)?),
+            Spec::Switch(s) => Ran::Switch(SwitchModel::build(&s)?.run(&Silent)?),
+            _ => {
+                return Err(ModelError::argument(
+                    "scene",
+                    scene.file(),
+                    "an asperity, surface or switch scene",
+                ))
+            }
         })
-        .or_raise()?;
+    })
+    .or_raise()?;
     Ok(match ran {
         Ran::Asperity(r) => ("asperity", result_to_py(py, &r)?),
         Ran::Surface(r) => ("surface", result_to_py(py, &r)?),
@@ -87,9 +86,8 @@ pub fn md_curve(py: Python<'_>, lam: f64, points: i64, delta_end: f64) -> PyResu
     if points < 0 {
         return Err(argument("points", points.to_string(), "in [4, 100000]"));
     }
-    let r = py
-        .detach(move || md::curve(lam, points as usize, delta_end))
-        .or_raise()?;
+    let r =
+        crate::pool::detach(py, move || md::curve(lam, points as usize, delta_end)).or_raise()?;
     result_to_py(py, &r)
 }
 
@@ -145,12 +143,11 @@ pub fn calibrate(
         })));
     }
     let fe_file2 = fe_file.clone();
-    let r = py
-        .detach(move || -> Result<_, ModelError> {
-            let spec = AsperitySpec::new(&scene, &registry())?;
-            calibration::calibrate(&spec, &data, &fe_file2, select, overlay)
-        })
-        .or_raise()?;
+    let r = crate::pool::detach(py, move || -> Result<_, ModelError> {
+        let spec = AsperitySpec::new(&scene, &registry())?;
+        calibration::calibrate(&spec, &data, &fe_file2, select, overlay)
+    })
+    .or_raise()?;
     let out = result_to_py(py, &r)?;
     let d = out.bind(py).cast::<PyDict>()?;
     let points = serde_json::to_value(&r.points).unwrap_or_default();

@@ -50,16 +50,15 @@ pub fn scene_from_py(obj: &Bound<'_, PyAny>) -> PyResult<Scene> {
         let v = py_to_json(obj, DICT_FILE, "")?;
         return Scene::from_json_value(DICT_FILE, &v).or_raise();
     }
-    let path: PathBuf = match obj.extract() {
-        Ok(p) => p,
-        Err(_) => {
-            return Err(argument(
+    let path: PathBuf =
+        match obj.extract() {
+            Ok(p) => p,
+            Err(_) => return Err(argument(
                 "scene",
                 format!("a {}", obj.get_type().name()?),
                 "a path to a TOML or JSON scene file, a dict of scene keys, or a stiction.Scene",
-            ))
-        }
-    };
+            )),
+        };
     Scene::read(&path).or_raise()
 }
 
@@ -72,8 +71,7 @@ pub fn scene_from_py(obj: &Bound<'_, PyAny>) -> PyResult<Scene> {
 pub fn load_scene(py: Python<'_>, source: &Bound<'_, PyAny>) -> PyResult<PyScene> {
     let scene = scene_from_py(source)?;
     let checked = scene.clone();
-    py.detach(move || Spec::new(&checked, &registry()).map(|_| ()))
-        .or_raise()?;
+    crate::pool::detach(py, move || Spec::new(&checked, &registry()).map(|_| ())).or_raise()?;
     Ok(PyScene { scene })
 }
 
@@ -118,7 +116,10 @@ fn value_from_py(obj: &Bound<'_, PyAny>, file: &str, key: &str) -> PyResult<toml
         }
     });
     let s = s.or_raise()?;
-    Ok(s.tree().get("v").cloned().unwrap_or(toml::Value::Boolean(false)))
+    Ok(s.tree()
+        .get("v")
+        .cloned()
+        .unwrap_or(toml::Value::Boolean(false)))
 }
 
 #[pymethods]
@@ -210,16 +211,14 @@ impl PyScene {
             }
         }
         let checked = s.clone();
-        py.detach(move || Spec::new(&checked, &registry()).map(|_| ()))
-            .or_raise()?;
+        crate::pool::detach(py, move || Spec::new(&checked, &registry()).map(|_| ())).or_raise()?;
         Ok(Self { scene: s })
     }
 
     /// Validates every key with the library (raises `InputError` naming the key).
     fn validate(&self, py: Python<'_>) -> PyResult<()> {
         let s = self.scene.clone();
-        py.detach(move || Spec::new(&s, &registry()).map(|_| ()))
-            .or_raise()
+        crate::pool::detach(py, move || Spec::new(&s, &registry()).map(|_| ())).or_raise()
     }
 
     /// Every key with the value it resolves to (defaults filled in), as a dict.
@@ -295,7 +294,10 @@ impl PyScene {
 pub fn scene_keys<'py>(py: Python<'py>, kind: Option<&str>) -> PyResult<Bound<'py, PyList>> {
     let kind = kind.map(kind_of).transpose()?;
     let list = PyList::empty(py);
-    for k in keys::KEYS.iter().filter(|k| kind.is_none_or(|t| k.in_kind(t))) {
+    for k in keys::KEYS
+        .iter()
+        .filter(|k| kind.is_none_or(|t| k.in_kind(t)))
+    {
         let d = PyDict::new(py);
         d.set_item("key", k.key)?;
         d.set_item("unit", k.unit)?;
