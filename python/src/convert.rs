@@ -41,6 +41,28 @@ pub fn value_to_py<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny
     })
 }
 
+/// A JSON value as plain Python data: dicts, lists, numbers, strings, booleans, None
+/// (what a scene's keys are written as).
+pub fn value_to_plain<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match v {
+        Value::Array(a) => {
+            let list = PyList::empty(py);
+            for x in a {
+                list.append(value_to_plain(py, x)?)?;
+            }
+            list.into_any()
+        }
+        Value::Object(o) => {
+            let d = PyDict::new(py);
+            for (k, x) in o {
+                d.set_item(k, value_to_plain(py, x)?)?;
+            }
+            d.into_any()
+        }
+        other => value_to_py(py, other)?,
+    })
+}
+
 fn number_to_py<'py>(py: Python<'py>, n: &serde_json::Number) -> PyResult<Bound<'py, PyAny>> {
     Ok(if let Some(i) = n.as_i64() {
         i.into_pyobject(py)?.into_any()

@@ -1,7 +1,7 @@
 //! `stiction.Scene`: a scene as written (`stiction_model::scene::Scene`), read from a TOML
 //! or JSON file, a dict, or text, and validated by the library's key and law registries.
 
-use crate::convert::{py_to_json, value_to_py};
+use crate::convert::{py_to_json, value_to_plain};
 use crate::errors::{argument, OrRaise};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
@@ -86,7 +86,21 @@ pub fn variable_fields() -> Vec<&'static str> {
 fn toml_value_to_py<'py>(py: Python<'py>, v: &toml::Value) -> PyResult<Bound<'py, PyAny>> {
     match v {
         toml::Value::Float(f) if !f.is_finite() => Ok(pyo3::types::PyFloat::new(py, *f).into_any()),
-        _ => value_to_py(py, &toml_to_json(v)),
+        toml::Value::Array(a) => {
+            let list = PyList::empty(py);
+            for x in a {
+                list.append(toml_value_to_py(py, x)?)?;
+            }
+            Ok(list.into_any())
+        }
+        toml::Value::Table(t) => {
+            let d = PyDict::new(py);
+            for (k, x) in t {
+                d.set_item(k, toml_value_to_py(py, x)?)?;
+            }
+            Ok(d.into_any())
+        }
+        _ => value_to_plain(py, &toml_to_json(v)),
     }
 }
 
@@ -224,7 +238,7 @@ impl PyScene {
     /// Every key with the value it resolves to (defaults filled in), as a dict.
     fn resolved<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let spec = validate(&self.scene)?;
-        value_to_py(py, &spec.common().echo())
+        value_to_plain(py, &spec.common().echo())
     }
 
     /// The scene as TOML text (the form of a scene file).
