@@ -39,8 +39,9 @@ impl Paths {
         if let Ok(s) = obj.cast::<PyString>() {
             return Ok(Paths::One(law_path(&s.extract::<String>()?)?));
         }
-        let words: Vec<String> = match obj.call_method0("tolist") {
-            Ok(l) => l.extract()?,
+        // a numpy array of any shape, in C order; else a sequence of words
+        let words: Vec<String> = match obj.call_method0("ravel") {
+            Ok(flat) => flat.call_method0("tolist")?.extract()?,
             Err(_) => obj.extract()?,
         };
         if words.len() != n && words.len() != 1 {

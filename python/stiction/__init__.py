@@ -181,7 +181,8 @@ def design_map(
     client: Any = None,
     shard: Optional[str] = None,
 ) -> DesignMap:
-    """A 1-D or 2-D map of the pull-out ratio after accommodation over the grid of `vary`,
+    """A 1-D or 2-D map of the pull-out ratio after accommodation (phi x largest pull-out
+    in Pa / K_s d0 in Pa; above 1 the switch sticks) over the grid of `vary`,
     a list of the CLI's ``--vary`` strings ``"FIELD=FROM:TO:lin|log:N"`` (e.g.
     ``["switch.k_s=1e9:1e11:log:8"]``; the first varies slowest). The points are those of
     ``stiction design map --vary ... --accuracy ...`` on the same scene, exactly: each
