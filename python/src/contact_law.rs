@@ -87,14 +87,16 @@ impl PyContactLaw {
     /// Reads a law file (law.json of `stiction law` or `stiction.tabulate_law`).
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
-        let law = crate::pool::detach(py, || ContactLaw::from_path(&path)).map_err(law_error)?;
+        let law =
+            crate::pool::detach_serial(py, || ContactLaw::from_path(&path)).map_err(law_error)?;
         Ok(Self { law })
     }
 
     /// A law from the text of a law.json.
     #[staticmethod]
     fn from_json(py: Python<'_>, text: &str) -> PyResult<Self> {
-        let law = crate::pool::detach(py, || ContactLaw::from_json_str(text)).map_err(law_error)?;
+        let law = crate::pool::detach_serial(py, || ContactLaw::from_json_str(text))
+            .map_err(law_error)?;
         Ok(Self { law })
     }
 
@@ -128,7 +130,7 @@ impl PyContactLaw {
         };
         let law = &self.law;
         let n = d.len();
-        let out = crate::pool::detach(py, || -> Result<_, LawError> {
+        let out = crate::pool::detach_serial(py, || -> Result<_, LawError> {
             let mut p = Vec::with_capacity(n);
             let mut t = Vec::with_capacity(n);
             let mut m = Vec::with_capacity(n);
@@ -189,7 +191,7 @@ impl PyContactLaw {
             }
         }
         let law = &self.law;
-        let out = crate::pool::detach(py, || -> Result<_, LawError> {
+        let out = crate::pool::detach_serial(py, || -> Result<_, LawError> {
             let n = d.len();
             let (mut p, mut t, mut m, mut r) = (
                 Vec::with_capacity(n),
@@ -230,7 +232,7 @@ impl PyContactLaw {
     ) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
         let d = ArrayIn::new(d)?;
         let law = &self.law;
-        let v = crate::pool::detach(py, || {
+        let v = crate::pool::detach_serial(py, || {
             d.values
                 .iter()
                 .map(|&x| law.virgin_pressure(x))
@@ -347,7 +349,7 @@ pub fn tabulate_law(
         accuracy: accuracy_arg(accuracy)?,
     };
     options.check().or_raise()?;
-    let r = crate::pool::detach(py, move || -> Result<_, ModelError> {
+    let r = crate::pool::detach_serial(py, move || -> Result<_, ModelError> {
         let spec = Spec::new(&scene, &registry())?;
         let ls = LawScene::of(&spec)?;
         law::tabulate(ls, &options, &Silent)

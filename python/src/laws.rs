@@ -64,6 +64,16 @@ where
     Ok(chunks.into_iter().flatten().collect())
 }
 
+/// Runs `f` over `n` points with the GIL released: on the pool when there is more than one
+/// chunk, else on this thread.
+fn detach_points<T: Send, F: FnOnce() -> T + Send>(py: Python<'_>, n: usize, f: F) -> T {
+    if n <= CHUNK {
+        crate::pool::detach_serial(py, f)
+    } else {
+        crate::pool::detach(py, f)
+    }
+}
+
 /// `stiction.maugis_kim_force`: the nondimensional Maugis-Kim force Fbar at each
 /// interference Delta of `delta` (paper eq 7 with the Kim extension; the units of
 /// `stiction md`), on one curve of `lam` whose landmarks are computed once.
@@ -79,6 +89,14 @@ pub fn maugis_kim_force(
     let d = ArrayIn::new(delta)?;
     let p = core_path(path, from_, None)?;
     let values = &d.values;
+    if values.len() <= CHUNK {
+        // one chunk: on this thread (the pool's hand-over would cost more than the work)
+        let forces = crate::pool::detach_serial(py, || {
+            md::curve_for(lam).and_then(|c| md::forces(&c, values, p))
+        })
+        .or_raise()?;
+        return array_out(py, forces, &d.shape);
+    }
     let forces = crate::pool::detach(py, || -> Result<Vec<f64>, ModelError> {
         let curve = md::curve_for(lam)?;
         let starts: Vec<usize> = (0..values.len()).step_by(CHUNK).collect();
@@ -211,7 +229,7 @@ impl PyAdhesionLaw {
         r.broadcast_to("radius", &d, "delta")?;
         let p = core_path(path, from_, None)?;
         let law = &self.law;
-        let f = crate::pool::detach(py, || {
+        let f = detach_points(py, d.len(), || {
             par_points(d.len(), |i| {
                 law.force(r.at(i), d.values[i], p).map_err(ModelError::from)
             })
@@ -224,7 +242,7 @@ impl PyAdhesionLaw {
     /// into contact on approach and out of contact on retraction.
     fn jumps(&self, py: Python<'_>, radius: f64) -> PyResult<(f64, f64)> {
         let law = &self.law;
-        let j = crate::pool::detach(py, || law.jumps(radius))
+        let j = crate::pool::detach_serial(py, || law.jumps(radius))
             .map_err(ModelError::from)
             .or_raise()?;
         Ok((j.jump_in, j.jump_out))
@@ -319,7 +337,7 @@ impl PyAsperity {
         };
         let a = &self.asperity;
         let dm_ref = dm.as_ref();
-        let f = crate::pool::detach(py, || {
+        let f = detach_points(py, d.len(), || {
             par_points(d.len(), |i| {
                 let hist = Self::history(dm_ref, i);
                 let p = if retract {
@@ -406,7 +424,7 @@ impl PyAsperity {
             delta_max: d,
         });
         let a = &self.asperity;
-        let j = crate::pool::detach(py, || a.jumps(hist))
+        let j = crate::pool::detach_serial(py, || a.jumps(hist))
             .map_err(ModelError::from)
             .or_raise()?;
         Ok((j.jump_in, j.jump_out))

@@ -41,3 +41,10 @@ pub fn install<T: Send>(f: impl FnOnce() -> T + Send) -> T {
 pub fn detach<T: Send, F: FnOnce() -> T + Send>(py: pyo3::Python<'_>, f: F) -> T {
     py.detach(|| install(f))
 }
+
+/// Runs `f` with the GIL released on the calling thread: for work that never enters a
+/// parallel loop (a contact law's evaluation, a short vectorised call), where handing it
+/// to the pool would cost more than the work.
+pub fn detach_serial<T: Send, F: FnOnce() -> T + Send>(py: pyo3::Python<'_>, f: F) -> T {
+    py.detach(f)
+}

@@ -43,7 +43,9 @@ def map_on_client(
         return _stiction.design_map_assemble(scene, vary, [], accuracy, shard)
     if hasattr(client, "scatter") and hasattr(client, "gather"):
         # dask.distributed: the scene once per worker, one task per point
-        base_ref = client.scatter(base, broadcast=True)
+        # a key of its own (hash=False): a map run again with the same scene must not meet
+        # the release of the previous run's copy
+        base_ref = client.scatter(base, broadcast=True, hash=False)
         run = uuid.uuid4().hex[:12]
         futures = [
             client.submit(evaluate_point, base_ref, values, key=f"stiction-design-point-{run}-{index}", pure=False)

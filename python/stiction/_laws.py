@@ -263,14 +263,14 @@ class ContactLaw:
         where d < d_min the history deepens (the virgin envelope's value; d_min becomes d,
         the path approach)."""
         p, t, m, r = self._law.evaluate(d, d_min, path)
-        return LawEvaluation({"pressure": p, "tangent": t, "d_min": m, "retract": r})
+        return LawEvaluation._of({"pressure": p, "tangent": t, "d_min": m, "retract": r})
 
     def follow(self, d: ArrayLike, state: Optional[dict] = None) -> tuple:
         """Follows separations `d` (m) in order as an FE code would, the history updated
         by each (from a virgin surface, or `state` as returned). Returns (LawEvaluation,
         final state dict)."""
         p, t, m, r, st = self._law.follow(d, state)
-        return LawEvaluation({"pressure": p, "tangent": t, "d_min": m, "retract": r}), st
+        return LawEvaluation._of({"pressure": p, "tangent": t, "d_min": m, "retract": r}), st
 
     def virgin_pressure(self, d: ArrayLike) -> tuple:
         """The virgin envelope p_V(d) (Pa) and its slope (Pa/m) at each separation (m)."""

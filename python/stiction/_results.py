@@ -221,6 +221,13 @@ class Record:
         return cache[cls]
 
     @classmethod
+    def _of(cls, fields: Mapping[str, Any]) -> "Record":
+        """A record of fields already of their declared types (no conversion)."""
+        obj = object.__new__(cls)
+        obj.__dict__.update(fields)
+        return obj
+
+    @classmethod
     def fields(cls) -> List[str]:
         """The declared fields."""
         return list(cls._hints())
