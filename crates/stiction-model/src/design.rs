@@ -216,29 +216,43 @@ pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, Model
             .collect::<Vec<_>>()
             .join(", ")
     };
-    let fail = |why: String| Err(ModelError::argument("vary", field, why));
+    let fail = |message: String| {
+        Err(ModelError::Option {
+            name: "vary".into(),
+            message,
+        })
+    };
     let Some(f) = keys::key(field).filter(|f| variable(f)) else {
         let why = match keys::key(field) {
             Some(f) if !f.key.contains('.') => format!(
-                "a design field: `{field}` is a top-level setting of the scene (set it in the scene file); the fields that can be varied are: {}",
-                list()
+                "`{field}` is a top-level setting of the scene, not a design field (set it in the scene file)"
             ),
-            Some(_) => format!(
-                "a numeric key of a switch scene; the fields that can be varied are: {}",
-                list()
-            ),
-            None => format!(
-                "a known field; the fields that can be varied are: {}",
-                list()
-            ),
+            Some(_) => format!("`{field}` is not a numeric key of a switch scene"),
+            None => format!("unknown field `{field}`"),
         };
-        return fail(why);
+        return fail(format!(
+            "{why}; the fields that can be varied are: {}",
+            list()
+        ));
     };
     let spring = matches!(base.switch.drive, Drive::Spring { .. });
+    let per_length = base.switch.spring_constant.is_some();
     match field {
+        "switch.k_s" if per_length => {
+            return fail(
+                "switch.k_s conflicts with the scene's drive: it gives switch.spring_constant over switch.electrode_area; vary switch.spring_constant (or give k_s instead)"
+                    .into(),
+            )
+        }
+        "switch.spring_constant" if !per_length => {
+            return fail(
+                "switch.spring_constant conflicts with the scene's drive: give `spring_constant = <N/m>` with `electrode_area = <m^2>` instead of k_s or impact_energy in [switch] to vary it, or vary switch.k_s"
+                    .into(),
+            )
+        }
         "switch.k_s" | "switch.voltage" if !spring => {
             return fail(format!(
-                "a field that fits the scene's drive: it gives switch.impact_energy, from which K_s is derived (at U = V_PI); give `k_s = <Pa/m>` instead of `impact_energy` in [switch] to vary {field}{}",
+                "{field} conflicts with the scene's drive: it gives switch.impact_energy, from which K_s is derived (at U = V_PI); give `k_s = <Pa/m>` instead of `impact_energy` in [switch] to vary {field}{}",
                 if field == "switch.k_s" {
                     ", or vary switch.impact_energy"
                 } else {
@@ -248,7 +262,7 @@ pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, Model
         }
         "switch.impact_energy" if spring => {
             return fail(
-                "a field that fits the scene's drive: it gives switch.k_s, from which E_I is derived (with the voltage); vary switch.k_s or switch.voltage, or give `impact_energy = <J/m^2>` instead of `k_s` (and no `voltage`) in [switch]"
+                "switch.impact_energy conflicts with the scene's drive: it gives switch.k_s, from which E_I is derived (with the voltage); vary switch.k_s or switch.voltage, or give `impact_energy = <J/m^2>` instead of `k_s` (and no `voltage`) in [switch]"
                     .into(),
             )
         }
@@ -258,7 +272,7 @@ pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, Model
             if !matches!(base.contact.counter, crate::spec::Counter::Material { .. }) =>
         {
             return fail(format!(
-                "a field of this scene: {field} applies only to a counter-surface of another material: give `counter = \"material\"` with counter_youngs_modulus and counter_poisson_ratio in [contact], or vary contact.youngs_modulus"
+                "{field} applies only to a counter-surface of another material: give `counter = \"material\"` with counter_youngs_modulus and counter_poisson_ratio in [contact], or vary contact.youngs_modulus"
             ))
         }
         _ => {}
