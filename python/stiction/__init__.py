@@ -140,16 +140,27 @@ def run(scene: SceneLike, accuracy: Optional[str] = None) -> Union[SwitchResult,
     return _RESULTS[kind](data)
 
 
-def maugis_kim_force(lam: float, delta: Any, path: str = "approach", from_: Optional[float] = None) -> Any:
+def maugis_kim_force(
+    lam: float,
+    delta: Any,
+    path: str = "approach",
+    from_: Optional[float] = None,
+    *,
+    delta_max: Optional[float] = None,
+) -> Any:
     """The Maugis-Kim force Fbar = F / (pi w R) at each interference Delta = delta /
     (pi^2 w^2 R / K^2)^(1/3) of `delta` (any shape; a float for a scalar), for the
     transition parameter ``lam`` = lambda in [1e-6, 1e6] (paper eqs 7-11 with the Kim
     extension; the units of ``stiction md --lambda LAM --delta D``).
 
     `path`: "approach" (coming from far: zero until the jump-in Delta_in = -2/(pi lambda))
-    or "retract" after the largest interference `from_` (the stable branch down to the
-    jump-out). Limits: the pull-off under load control is -2 (DMT, lambda -> 0) and -3/2
-    (JKR, lambda -> inf)."""
+    or "retract" after the largest interference `from_` (``--from``; `delta_max` is
+    another name for it), on the stable branch down to the jump-out. Limits: the pull-off
+    under load control is -2 (DMT, lambda -> 0) and -3/2 (JKR, lambda -> inf)."""
+    if delta_max is not None:
+        if from_ is not None and from_ != delta_max:
+            raise InputError(f"from_ = {from_!r} and delta_max = {delta_max!r}: give one (they name the same value)")
+        from_ = delta_max
     return _stiction.maugis_kim_force(lam, delta, path, from_)
 
 

@@ -289,6 +289,8 @@ class Record:
     def __repr__(self) -> str:
         parts = []
         for k, v in self.__dict__.items():
+            if k.startswith("_"):
+                continue
             if isinstance(v, (Record, Table, dict)) or (isinstance(v, list) and len(v) > 3):
                 s = f"<{type(v).__name__}>" if not isinstance(v, list) else f"[{len(v)} items]"
             elif isinstance(v, np.ndarray):

@@ -36,6 +36,7 @@ def test_force_equals_the_command_line(cli, lam, delta, path, from_):
 def test_force_equals_the_recorded_value():
     assert stiction.maugis_kim_force(0.5, 0.3) == MD_05_03
     assert stiction.maugis_kim_force(0.5, 0.3, "retract", from_=1.0) == MD_05_03
+    assert stiction.maugis_kim_force(0.5, 0.3, "retract", delta_max=1.0) == MD_05_03
 
 
 def test_the_curve_equals_the_command_line(cli):
