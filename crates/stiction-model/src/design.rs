@@ -112,34 +112,43 @@ impl<'a> Evaluator<'a> {
     /// than the asperities push back), are `OutOfDomain`; the others `Failed`.
     pub fn point(&self, values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
         let r = self.result(values)?;
-        if !r.warnings.is_empty() {
-            let at = values
-                .iter()
-                .map(|(k, v)| format!("{k} = {}", num(*v)))
-                .collect::<Vec<_>>()
-                .join(", ");
-            if let Ok(mut g) = self.guards.lock() {
-                // each code once per point: a count never exceeds the points
-                let mut seen: Vec<&'static str> = Vec::new();
-                for w in &r.warnings {
-                    if seen.contains(&w.code) {
-                        continue;
-                    }
-                    seen.push(w.code);
-                    g.entry(w.code)
-                        .and_modify(|t| {
-                            t.points += 1;
-                            t.breaks_validity |= w.breaks_validity;
-                        })
-                        .or_insert_with(|| GuardTally {
-                            points: 1,
-                            example: format!("at {at}: {}", w.message),
-                            breaks_validity: w.breaks_validity,
-                        });
+        self.record(values, &r.warnings);
+        Ok(design_point(&r))
+    }
+
+    /// Adds the guards one point raised (`values`: its fields and values) to the tally
+    /// that [`Evaluator::warnings`] reports, as [`Evaluator::point`] does for the points it
+    /// runs. For a front end that runs the points elsewhere ([`Evaluator::result`] and
+    /// [`design_point`] on the workers of a cluster) and collects their warnings here.
+    pub fn record(&self, values: &[(&str, f64)], warnings: &[Warning]) {
+        if warnings.is_empty() {
+            return;
+        }
+        let at = values
+            .iter()
+            .map(|(k, v)| format!("{k} = {}", num(*v)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        if let Ok(mut g) = self.guards.lock() {
+            // each code once per point: a count never exceeds the points
+            let mut seen: Vec<&'static str> = Vec::new();
+            for w in warnings {
+                if seen.contains(&w.code) {
+                    continue;
                 }
+                seen.push(w.code);
+                g.entry(w.code)
+                    .and_modify(|t| {
+                        t.points += 1;
+                        t.breaks_validity |= w.breaks_validity;
+                    })
+                    .or_insert_with(|| GuardTally {
+                        points: 1,
+                        example: format!("at {at}: {}", w.message),
+                        breaks_validity: w.breaks_validity,
+                    });
             }
         }
-        Ok(design_point(&r))
     }
 
     /// The guards raised so far, one warning per kind with the number of points that
@@ -458,4 +467,32 @@ pub fn map(
         map,
         warnings,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::guards::code;
+
+    #[test]
+    fn recorded_warnings_are_tallied_once_per_point() {
+        let registry = LawRegistry::builtin();
+        let ev = Evaluator::new(Scene::paper(Kind::Switch), &registry);
+        let w = Warning::invalid(code::BEYOND_FIT_RANGE, "most of the load".into());
+        // a code raised twice by one point counts once
+        ev.record(&[("surface.sigma_s", 2e-9)], &[w.clone(), w.clone()]);
+        ev.record(&[("surface.sigma_s", 4e-9)], &[w]);
+        ev.record(&[("surface.sigma_s", 8e-9)], &[]);
+        let tally = ev.warnings(3);
+        assert_eq!(tally.len(), 1);
+        assert_eq!(tally[0].code, code::BEYOND_FIT_RANGE);
+        assert!(tally[0].breaks_validity);
+        assert_eq!(
+            tally[0].message,
+            format!(
+                "2 of 3 design points raised it; e.g. at surface.sigma_s = {}: most of the load",
+                num(2e-9)
+            )
+        );
+    }
 }
