@@ -191,11 +191,35 @@ fn switch_json_has_the_contract_keys_and_the_verdict_is_the_ratio() {
             "unloading",
             "sticks",
             "pull_out_ratio",
+            "hold",
+            "hold_status",
+            "end_of_impact",
         ] {
             assert!(c.get(k).is_some(), "cycle lacks {k}");
         }
         assert!(c["pull_out_pressure"].as_f64().unwrap() >= 0.0);
+        // the ohmic contract: the closed switch under the hold and at the end of impact
+        for state in ["hold", "end_of_impact"] {
+            for k in [
+                "separation",
+                "real_contact_fraction",
+                "spot_density",
+                "mean_spot_radius",
+                "contact_resistance",
+            ] {
+                assert!(c[state][k].as_f64().is_some(), "{state} lacks {k}");
+            }
+        }
+        // R = 1 / (G/A x phi A): the spots on phi x electrode_area give its scale
+        let h = &c["hold"];
+        assert!(h["contact_resistance"].as_f64().unwrap() > 0.0);
+        assert!(
+            (h["spots"].as_f64().unwrap() / (h["spot_density"].as_f64().unwrap() * 1e-8) - 1.0)
+                .abs()
+                < 1e-12
+        );
     }
+    assert!(v["hold_pressure"].as_f64().unwrap() > 0.0);
     for k in ["d_e", "pull_out_pressure", "unloading"] {
         assert!(v["elastic"].get(k).is_some());
     }
@@ -325,4 +349,75 @@ fn help_lists_the_built_subcommands() {
             "{name} --help fails"
         );
     }
+}
+
+/// The ohmic columns of cycles.csv, and `--require` refused by name when the scene cannot
+/// compute its quantity or the text does not parse (exit 2 before any point runs).
+#[test]
+fn ohmic_columns_and_the_requirement_option() {
+    let f = small_switch_scene("ohmic", &[]);
+    let out = stiction(&["switch", "--scene", f.to_str().unwrap(), "--format", "csv"]);
+    assert!(out.status.success());
+    let csv = String::from_utf8(out.stdout).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    for k in [
+        "hold_status",
+        "hold_separation_m",
+        "hold_real_contact_fraction",
+        "hold_spot_density_per_m2",
+        "hold_mean_spot_radius_m",
+        "hold_contact_resistance_ohm",
+        "end_contact_resistance_ohm",
+    ] {
+        assert!(header.contains(&k), "{header:?} lacks {k}");
+    }
+    let row: Vec<&str> = csv.lines().nth(1).unwrap().split(',').collect();
+    let at = |k: &str| header.iter().position(|h| *h == k).unwrap();
+    assert_eq!(row[at("hold_status")], "rests");
+    let r: f64 = row[at("hold_contact_resistance_ohm")].parse().unwrap();
+    assert!(r > 0.0 && r.is_finite());
+    for (require, needle) in [
+        ("contact_resistance=1", "--require"),
+        ("resistance<1", "unknown quantity"),
+    ] {
+        let out = stiction(&[
+            "design",
+            "threshold",
+            "--scene",
+            f.to_str().unwrap(),
+            "--vary",
+            "switch.impact_energy",
+            "--from",
+            "0.1",
+            "--to",
+            "1",
+            "--require",
+            require,
+        ]);
+        assert_eq!(out.status.code(), Some(2), "{require}");
+        let e = String::from_utf8(out.stderr).unwrap();
+        assert!(e.contains(needle) && e.contains(require), "{e}");
+    }
+    // no electrode area: the resistance cannot be computed, said before any point runs
+    let g = temp_file(
+        "switch-no-area",
+        scene_with("switch", &[("electrode_area", "# no electrode area")]).as_bytes(),
+    );
+    let out = stiction(&[
+        "design",
+        "threshold",
+        "--scene",
+        g.to_str().unwrap(),
+        "--vary",
+        "switch.impact_energy",
+        "--from",
+        "0.1",
+        "--to",
+        "1",
+        "--require",
+        "contact_resistance<1",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let e = String::from_utf8(out.stderr).unwrap();
+    assert!(e.contains("switch.electrode_area"), "{e}");
 }

@@ -54,7 +54,14 @@ pub fn has_null(v: &serde_json::Value) -> bool {
 
 /// Keys whose null is a public contract (the trust issue): "not accommodated", "no
 /// closing design is free", "the switch closes everywhere or nowhere".
-pub const CONTRACT_NULLS: &[&str] = &["accommodation_cause", "critical_value", "closure_boundary"];
+pub const CONTRACT_NULLS: &[&str] = &[
+    "accommodation_cause",
+    "critical_value",
+    "closure_boundary",
+    "hold",
+    "end_of_impact",
+    "contact_resistance",
+];
 
 /// A scene of `kind` printed by the binary, with `edits` (key prefix, new line) applied.
 pub fn scene_with(kind: &str, edits: &[(&str, &str)]) -> String {

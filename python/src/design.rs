@@ -24,7 +24,7 @@ use stiction_model::{ModelError, Silent};
 /// `stiction.design_threshold`: the critical value of one field (`stiction design
 /// threshold`).
 #[pyfunction]
-#[pyo3(signature = (scene, vary, from_, to, accuracy = None))]
+#[pyo3(signature = (scene, vary, from_, to, accuracy = None, require = None))]
 pub fn design_threshold(
     py: Python<'_>,
     scene: &Bound<'_, PyAny>,
@@ -32,12 +32,13 @@ pub fn design_threshold(
     from_: f64,
     to: f64,
     accuracy: Option<&str>,
+    require: Option<String>,
 ) -> PyResult<Py<PyAny>> {
     let scene = scene_from_py(scene)?;
     let acc = accuracy_arg(accuracy)?;
     let vary = vary.to_string();
     let r = crate::pool::detach(py, move || {
-        design::threshold(&scene, &registry(), &vary, from_, to, acc)
+        design::threshold_with(&scene, &registry(), &vary, from_, to, acc, require.as_deref())
     })
     .or_raise()?;
     let out = result_to_py(py, &r)?;
@@ -115,19 +116,28 @@ impl PyMap {
 
 /// `stiction.design_map` without a cluster: the points in parallel here (rayon).
 #[pyfunction]
-#[pyo3(signature = (scene, vary, accuracy = None, shard = None))]
+#[pyo3(signature = (scene, vary, accuracy = None, shard = None, require = None))]
 pub fn design_map(
     py: Python<'_>,
     scene: &Bound<'_, PyAny>,
     vary: Vec<String>,
     accuracy: Option<&str>,
     shard: Option<&str>,
+    require: Option<String>,
 ) -> PyResult<PyMap> {
     let scene = scene_from_py(scene)?;
     let acc = accuracy_arg(accuracy)?;
     let shard = shard.map(str::to_string);
     let r = crate::pool::detach(py, move || {
-        design::map(&scene, &registry(), &vary, shard.as_deref(), acc, &Silent)
+        design::map_with(
+            &scene,
+            &registry(),
+            &vary,
+            shard.as_deref(),
+            acc,
+            require.as_deref(),
+            &Silent,
+        )
     })
     .or_raise()?;
     Ok(PyMap::of(r))
@@ -137,7 +147,7 @@ pub fn design_map(
 /// applied) as TOML text, and the points to run, `(index, [(field, value), ...])`, checked
 /// as `stiction design map` checks them before any point runs.
 #[pyfunction]
-#[pyo3(signature = (scene, vary, accuracy = None, shard = None))]
+#[pyo3(signature = (scene, vary, accuracy = None, shard = None, require = None))]
 #[allow(clippy::type_complexity)]
 pub fn design_map_plan(
     py: Python<'_>,
@@ -145,12 +155,20 @@ pub fn design_map_plan(
     vary: Vec<String>,
     accuracy: Option<&str>,
     shard: Option<&str>,
+    require: Option<String>,
 ) -> PyResult<(String, Vec<(usize, Vec<(String, f64)>)>)> {
     let scene = scene_from_py(scene)?;
     let acc = accuracy_arg(accuracy)?;
     let shard = shard.map(str::to_string);
-    let (base, request) = crate::pool::detach(py, move || {
-        design::map_request(&scene, &registry(), &vary, shard.as_deref(), acc)
+    let (base, request, _) = crate::pool::detach(py, move || {
+        design::map_request_with(
+            &scene,
+            &registry(),
+            &vary,
+            shard.as_deref(),
+            acc,
+            require.as_deref(),
+        )
     })
     .or_raise()?;
     let text = toml::to_string(base.tree()).map_err(|e| {
@@ -235,12 +253,14 @@ pub fn design_point(py: Python<'_>, base: &str, values: Vec<(String, f64)>) -> P
 
 /// A guard's code as the library spells it (`&'static str`).
 fn static_code(c: &str) -> &'static str {
-    const KNOWN: [&str; 5] = [
+    const KNOWN: [&str; 7] = [
         code::ADHESION_YIELDS,
         code::BEYOND_FIT_RANGE,
         code::ABOVE_HARDNESS,
         code::ABOVE_STRENGTH,
         code::NON_DEEPENING,
+        code::HOLD_DEEPER_THAN_IMPACT,
+        code::DENSE_CONTACT_SPOTS,
     ];
     match KNOWN.iter().find(|k| **k == c) {
         Some(k) => k,
@@ -258,7 +278,7 @@ fn bits(values: &[f64]) -> Vec<u64> {
 /// each point's answer as it records a local evaluation (the same checks and statuses), so
 /// the map equals `stiction design map`'s on the same grid.
 #[pyfunction]
-#[pyo3(signature = (scene, vary, answers, accuracy = None, shard = None))]
+#[pyo3(signature = (scene, vary, answers, accuracy = None, shard = None, require = None))]
 pub fn design_map_assemble(
     _py: Python<'_>,
     scene: &Bound<'_, PyAny>,
@@ -266,10 +286,12 @@ pub fn design_map_assemble(
     answers: &Bound<'_, PyList>,
     accuracy: Option<&str>,
     shard: Option<&str>,
+    require: Option<&str>,
 ) -> PyResult<PyMap> {
     let scene = scene_from_py(scene)?;
     let acc = accuracy_arg(accuracy)?;
-    let (base, request) = design::map_request(&scene, &registry(), &vary, shard, acc).or_raise()?;
+    let (base, request, require) =
+        design::map_request_with(&scene, &registry(), &vary, shard, acc, require).or_raise()?;
     // the answers as Rust values, by the bits of the point's grid values
     type Got = (Result<DesignPoint, PointError>, Vec<Warning>);
     let mut got: HashMap<Vec<u64>, Got> = HashMap::new();
@@ -322,7 +344,8 @@ pub fn design_map_assemble(
             }
         },
         |_, _| {},
-    );
+    )
+    .with_requirement(require);
     // the guards in index order (deterministic)
     for p in map.points() {
         if let Some((_, w)) = got.get(&bits(&p.values)) {

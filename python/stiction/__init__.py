@@ -37,6 +37,7 @@ from ._laws import (
 from ._results import (
     AsperityResult,
     CalibrationResult,
+    ContactState,
     Cycle,
     DesignMap,
     LawEvaluation,
@@ -78,6 +79,7 @@ __all__ = [
     "Record",
     "Table",
     "SwitchResult",
+    "ContactState",
     "Cycle",
     "SurfaceResult",
     "AsperityResult",
@@ -172,13 +174,21 @@ def md_curve(lam: float, points: int = 200, delta_end: float = 5.0) -> MdResult:
 
 
 def design_threshold(
-    scene: SceneLike, vary: str, from_: float, to: float, accuracy: Optional[str] = None
+    scene: SceneLike,
+    vary: str,
+    from_: float,
+    to: float,
+    accuracy: Optional[str] = None,
+    require: Optional[str] = None,
 ) -> ThresholdResult:
     """The critical value of the scene field `vary` (``section.key``, e.g.
     ``"surface.sigma_s"``) in [`from_`, `to`] (its SI unit) at which the pull-out ratio
     after accommodation (phi x largest pull-out / K_s d0) crosses 1, as ``stiction design
-    threshold --vary FIELD --from A --to B``."""
-    return ThresholdResult(_stiction.design_threshold(scene, vary, from_, to, accuracy))
+    threshold --vary FIELD --from A --to B``. `require` (``"contact_resistance<1"``, ohm;
+    or ``"real_contact_fraction>0.01"``) adds a second requirement, as ``--require``: the
+    result's ``requirement`` has its crossings and the ``window`` of values where the
+    switch is free of stiction and meets it."""
+    return ThresholdResult(_stiction.design_threshold(scene, vary, from_, to, accuracy, require))
 
 
 def _design_map(native: Any) -> DesignMap:
@@ -191,6 +201,7 @@ def design_map(
     accuracy: Optional[str] = None,
     client: Any = None,
     shard: Optional[str] = None,
+    require: Optional[str] = None,
 ) -> DesignMap:
     """A 1-D or 2-D map of the pull-out ratio after accommodation (phi x largest pull-out
     in Pa / K_s d0 in Pa; above 1 the switch sticks) over the grid of `vary`,
@@ -205,13 +216,15 @@ def design_map(
     task on the cluster, evaluated by this package on the workers, and the answers are
     assembled into the same map (docs/python.md, "Design maps on a Dask cluster").
     `shard` ("K/N") runs part K of N of the grid, as ``--shard``; join the parts with
-    :func:`design_merge`."""
+    :func:`design_merge`. `require` (``"contact_resistance<1"``) marks each point's
+    ``meets_requirement`` and ``in_window`` (free of stiction and meeting it), as
+    ``--require``."""
     vary_list = [vary] if isinstance(vary, str) else list(vary)
     if client is None:
-        return _design_map(_stiction.design_map(scene, vary_list, accuracy, shard))
+        return _design_map(_stiction.design_map(scene, vary_list, accuracy, shard, require))
     from ._dask import map_on_client
 
-    return _design_map(map_on_client(client, scene, vary_list, accuracy, shard))
+    return _design_map(map_on_client(client, scene, vary_list, accuracy, shard, require))
 
 
 def design_merge(parts: Sequence[Union[DesignMap, PathLike]]) -> DesignMap:

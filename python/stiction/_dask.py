@@ -36,11 +36,12 @@ def map_on_client(
     vary: List[str],
     accuracy: Optional[str],
     shard: Optional[str],
+    require: Optional[str] = None,
 ) -> Any:
     """Runs the points of a map on `client` and assembles them (a NativeMap)."""
-    base, points = _stiction.design_map_plan(scene, vary, accuracy, shard)
+    base, points = _stiction.design_map_plan(scene, vary, accuracy, shard, require)
     if not points:
-        return _stiction.design_map_assemble(scene, vary, [], accuracy, shard)
+        return _stiction.design_map_assemble(scene, vary, [], accuracy, shard, require)
     if hasattr(client, "scatter") and hasattr(client, "gather"):
         # dask.distributed: the scene once per worker, one task per point
         # a key of its own (hash=False): a map run again with the same scene must not meet
@@ -57,4 +58,4 @@ def map_on_client(
         futures = [client.submit(evaluate_point, base, values) for _, values in points]
         answers = [f.result() for f in futures]
     pairs = [(index, answer) for (index, _), answer in zip(points, answers)]
-    return _stiction.design_map_assemble(scene, vary, pairs, accuracy, shard)
+    return _stiction.design_map_assemble(scene, vary, pairs, accuracy, shard, require)

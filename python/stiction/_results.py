@@ -31,6 +31,7 @@ __all__ = [
     "Targets",
     "SwitchErrors",
     "DriveReport",
+    "ContactState",
     "Cycle",
     "ElasticComparison",
     "SwitchResult",
@@ -399,6 +400,23 @@ class DriveReport(Record):
     derived: List[str]
 
 
+class ContactState(Record):
+    """The closed switch's contact at one state of a cycle (the rest under the hold, or
+    the end of impact): real contact area, spots, contact resistance (theory 6.5)."""
+
+    separation: float  #: mean plane of asperity heights to the counter-surface (m)
+    contact_pressure: float  #: Pa per contact area (compressive > 0)
+    real_contact_fraction: float  #: A_r / (phi A) (-)
+    spot_density: float  #: contacting asperities per unit contact area (1/m^2)
+    mean_spot_radius: float  #: m
+    spots: Optional[float]  #: spots on phi x electrode_area (with electrode_area)
+    contact_resistance: Optional[float]  #: the spots in parallel, Holm-Sharvin (Wexler) (ohm)
+    interaction_resistance: Optional[float]  #: Greenwood's 16 rho / (3 pi^2 alpha) (ohm)
+    contact_resistance_with_interaction: Optional[float]  #: the sum (ohm)
+    knudsen_number: Optional[float]  #: lambda / mean spot radius (-)
+    relative_error: float  #: largest relative error estimate of the integrals
+
+
 class Cycle(Record):
     """One switch cycle: the impact (eq 17) and the pull-out."""
 
@@ -415,6 +433,9 @@ class Cycle(Record):
     sticks: bool  #: ratio above 1: the spring cannot open the switch
     unloading: PressureCurve  #: unloading curve (empty with points = 0)
     well: PressureCurve  #: the adhesive well with the pull-out point (empty with points = 0)
+    hold: Optional[ContactState]  #: the rest under the hold (None: opens or not computed)
+    hold_status: str  #: rests | deeper_than_impact | opens | not_computed
+    end_of_impact: Optional[ContactState]  #: the contact at d_e (None: not computed)
 
 
 class ElasticComparison(Record):
@@ -443,6 +464,10 @@ class SwitchResult(Record):
     impact_energy: float  #: impact energy per electrode area E_I (J/m^2)
     restoring_pressure: float  #: K_s d0 (Pa)
     contact_area_fraction: float  #: fraction phi of the electrode in contact
+    hold_voltage: float  #: voltage holding the switch shut after each impact (V; 0 with hold_force)
+    hold_force: Optional[float]  #: force holding it shut on its contacts (N), if given instead
+    hold_pressure: float  #: the hold's pressure per contact area (Pa)
+    contact_state: str  #: every_cycle | last_cycle | none
     closes: bool  #: whether the electrode reaches contact
     drive: DriveReport
     accommodation_tolerance: float  #: relative change that counts as accommodated
@@ -464,7 +489,11 @@ class SwitchResult(Record):
     def per_cycle(self) -> Table:
         """The cycles' scalar fields as a table of numpy columns (``r.per_cycle.d_e``)."""
         rows = [
-            {k: v for k, v in c.__dict__.items() if not isinstance(v, Table)}
+            {
+                k: v
+                for k, v in c.__dict__.items()
+                if not isinstance(v, (Table, Record)) and k not in ("hold", "end_of_impact")
+            }
             for c in self.cycles
         ]
         return Table.from_rows(rows) if rows else Table({})
@@ -577,6 +606,10 @@ class MapPoint(Record):
     closes: Optional[bool]  #: the electrode reaches contact
     validity_holds: Optional[bool]  #: the model holds at this point
     accommodation_cause: Optional[str]  #: saturated | non_deepening
+    contact_resistance: Optional[float]  #: under the hold after the last cycle (ohm)
+    real_contact_fraction: Optional[float]  #: under the hold after the last cycle (-)
+    meets_requirement: Optional[bool]  #: with a requirement
+    in_window: Optional[bool]  #: free of stiction and meeting the requirement
 
 
 class DesignMap(Record):
@@ -590,6 +623,7 @@ class DesignMap(Record):
     grid: Dict[str, Any]  #: the axes: field, from, to, spacing, n, values
     scene: Dict[str, Any]  #: the scene as run (design settings applied)
     shard: Optional[Dict[str, Any]]  #: this map's part K of N, for a shard
+    requirement: Optional[str]  #: the second requirement (``contact_resistance<1e0``), if any
     points: List[MapPoint]
     warnings: List[ModelWarning]  #: guards the points raised (one per kind, with counts)
     validity: Optional[Validity]  #: whether the model holds at every point (None for a merged map)
@@ -667,7 +701,8 @@ class ThresholdResult(Record):
     crossings: List[Dict[str, Any]]  #: every crossing of 1 found
     closure_boundary: Optional[Dict[str, Any]]
     closure_boundaries: List[Dict[str, Any]]
-    scan: Table  #: value, status, pull_out_ratio, closes, validity_holds
+    scan: Table  #: value, status, pull_out_ratio, closes, validity_holds (, contact_resistance, ...)
+    requirement: Optional[Dict[str, Any]]  #: with ``require``: requirement, crossings, window
     accuracy: str
     unit: Optional[str]  #: SI unit of the field
     validity: Validity

@@ -141,7 +141,12 @@ class Surface:
     def pull_out(self, d_min: float) -> Dict[str, float]: ...
 
 def design_threshold(
-    scene: _SceneLike, vary: str, from_: float, to: float, accuracy: Optional[str] = None
+    scene: _SceneLike,
+    vary: str,
+    from_: float,
+    to: float,
+    accuracy: Optional[str] = None,
+    require: Optional[str] = None,
 ) -> Dict[str, Any]:
     """The critical value of one field (a dict of the threshold's fields)."""
 
@@ -154,12 +159,20 @@ class NativeMap:
     def data(self) -> Dict[str, Any]: ...
 
 def design_map(
-    scene: _SceneLike, vary: Sequence[str], accuracy: Optional[str] = None, shard: Optional[str] = None
+    scene: _SceneLike,
+    vary: Sequence[str],
+    accuracy: Optional[str] = None,
+    shard: Optional[str] = None,
+    require: Optional[str] = None,
 ) -> NativeMap:
     """A map with its points run here (rayon)."""
 
 def design_map_plan(
-    scene: _SceneLike, vary: Sequence[str], accuracy: Optional[str] = None, shard: Optional[str] = None
+    scene: _SceneLike,
+    vary: Sequence[str],
+    accuracy: Optional[str] = None,
+    shard: Optional[str] = None,
+    require: Optional[str] = None,
 ) -> Tuple[str, List[Tuple[int, List[Tuple[str, float]]]]]:
     """(base scene TOML, [(index, [(field, value)])]) of a map, checked."""
 
@@ -174,6 +187,7 @@ def design_map_assemble(
     answers: List[Tuple[int, Any]],
     accuracy: Optional[str] = None,
     shard: Optional[str] = None,
+    require: Optional[str] = None,
 ) -> NativeMap:
     """The map of the workers' answers."""
 

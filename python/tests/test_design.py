@@ -154,3 +154,23 @@ def test_a_shard_on_dask_and_a_process_pool(dask_client, spring_scene, local_map
     with ProcessPoolExecutor(2) as pool:
         m = stiction.design_map(spring_scene, VARY, accuracy="fast", client=pool)
     assert m.to_json() == local_map.to_json()
+
+
+def test_threshold_with_a_resistance_requirement_reports_the_window():
+    """`require` as `--require`: the design window lies between the resistance crossing
+    (more voltage, lower resistance) and the stiction crossing (free below)."""
+    s = stiction.Scene.paper("switch").with_values(
+        {
+            "switch.impact_energy": None,
+            "switch.k_s": 3e11,
+            "switch.voltage": 300.0,
+            "contact.yield_modulus": "composite",
+        }
+    )
+    t = stiction.design_threshold(s, "switch.voltage", 100.0, 500.0, accuracy="fast",
+                                  require="contact_resistance<4e-6")
+    req = t.requirement
+    assert len(req["crossings"]) == 1
+    lo, hi = req["window"][0]
+    assert lo == pytest.approx(req["crossings"][0]["value"], rel=1e-3)
+    assert hi == pytest.approx(t.critical_value, rel=1e-3)

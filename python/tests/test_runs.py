@@ -127,3 +127,19 @@ def test_every_field_of_a_result_is_declared(switch_fast):
     check(stiction.run(stiction.Scene.paper("asperity")))
     check(stiction.run(stiction.Scene.paper("asperity")).cases[0])
     check(stiction.md_curve(1.0))
+
+
+def test_switch_reports_the_closed_contact(switch_fast):
+    """Each cycle's rest under the hold voltage: the contact pushes with the hold pressure,
+    and the resistance with the spots' interaction is the sum of its two terms."""
+    for c in switch_fast.cycles:
+        assert c.hold_status == "rests"
+        h = c.hold
+        assert isinstance(h, stiction.ContactState)
+        assert h.contact_pressure == pytest.approx(switch_fast.hold_pressure, rel=1e-6)
+        assert h.separation > c.d_e
+        assert h.contact_resistance_with_interaction == pytest.approx(
+            h.contact_resistance + h.interaction_resistance, rel=1e-12
+        )
+        assert c.end_of_impact.real_contact_fraction > h.real_contact_fraction
+    assert switch_fast.hold_voltage == switch_fast.voltage

@@ -82,6 +82,12 @@ pub struct ThresholdCommand {
     /// Accuracy mode (replaces the scene's); its pull-out tolerance sets the uncertainty.
     #[arg(long, value_enum)]
     pub accuracy: Option<AccuracyArg>,
+    /// A second requirement beside freedom from stiction, QUANTITY<LIMIT or
+    /// QUANTITY>LIMIT: contact_resistance (ohm; needs contact.resistivity,
+    /// contact.mean_free_path and switch.electrode_area) or real_contact_fraction (-), under
+    /// the hold voltage after the last cycle; reports the window where both hold.
+    #[arg(long, value_name = "QUANTITY<LIMIT")]
+    pub require: Option<String>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = DesignFormat::Table)]
     pub format: DesignFormat,
@@ -91,13 +97,14 @@ impl ThresholdCommand {
     /// Runs the search.
     pub fn execute(&self, ctx: Ctx) -> Result<String, Error> {
         let loaded = self.scene.load(Kind::Switch, &[])?;
-        let r = design::threshold(
+        let r = design::threshold_with(
             &loaded.scene,
             ctx.registry,
             &self.vary,
             self.from,
             self.to,
             self.accuracy.map(Into::into),
+            self.require.as_deref(),
         )
         .map_err(|e| loaded.blame(e))?;
         let format = match self.format {
@@ -135,19 +142,23 @@ impl Render for ThresholdResult {
     }
 
     fn csv(&self) -> String {
-        let mut s = String::from("value,status,pull_out_ratio,closes,validity_holds\n");
+        let mut s = String::from(
+            "value,status,pull_out_ratio,closes,validity_holds,contact_resistance,real_contact_fraction,meets_requirement\n",
+        );
         let opt = |b: Option<bool>| b.map(|b| b.to_string()).unwrap_or_default();
+        let num = |v: Option<f64>| v.map(|r| format!("{r:e}")).unwrap_or_default();
         for p in &self.threshold.scan {
             let _ = writeln!(
                 s,
-                "{:e},{},{},{},{}",
+                "{:e},{},{},{},{},{},{},{}",
                 p.value,
                 p.status,
-                p.pull_out_ratio
-                    .map(|r| format!("{r:e}"))
-                    .unwrap_or_default(),
+                num(p.pull_out_ratio),
                 opt(p.closes),
-                opt(p.validity_holds)
+                opt(p.validity_holds),
+                num(p.contact_resistance),
+                num(p.real_contact_fraction),
+                opt(p.meets_requirement)
             );
         }
         s
@@ -186,6 +197,12 @@ pub struct MapCommand {
     /// Accuracy mode (replaces the scene's).
     #[arg(long, value_enum)]
     pub accuracy: Option<AccuracyArg>,
+    /// A second requirement beside freedom from stiction, QUANTITY<LIMIT or
+    /// QUANTITY>LIMIT: contact_resistance (ohm; needs contact.resistivity,
+    /// contact.mean_free_path and switch.electrode_area) or real_contact_fraction (-), under
+    /// the hold voltage after the last cycle; reports the window where both hold.
+    #[arg(long, value_name = "QUANTITY<LIMIT")]
+    pub require: Option<String>,
 }
 
 /// A computed map with its files, for rendering.
@@ -236,21 +253,23 @@ impl MapCommand {
         let loaded = self.scene.load(Kind::Switch, &[])?;
         let accuracy = self.accuracy.map(Into::into);
         // everything checked before the first point runs, the output folder included
-        design::map_request(
+        design::map_request_with(
             &loaded.scene,
             ctx.registry,
             &self.vary,
             self.shard.as_deref(),
             accuracy,
+            self.require.as_deref(),
         )
         .map_err(|e| loaded.blame(e))?;
         preflight(Some(&self.out), MAP_FILES, None)?;
-        let r = design::map(
+        let r = design::map_with(
             &loaded.scene,
             ctx.registry,
             &self.vary,
             self.shard.as_deref(),
             accuracy,
+            self.require.as_deref(),
             &Bar::new(),
         )
         .map_err(argument_error)?;

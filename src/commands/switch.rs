@@ -266,34 +266,88 @@ pub fn plot_svg(r: &SwitchResult) -> Result<String, String> {
         .map(|c| c.pull_out_separation * 1e9)
         .fold(x0, f64::max);
     let zoom_x = (x0, (x0 + 2.5 * (farthest - x0)).min(x1).max(x0 + 1e-9));
-    plot::svg(
-        &r.title,
-        &[
-            Panel {
-                caption,
-                x_label: "separation d [nm]".into(),
-                y_label: "pressure [MPa]".into(),
-                series: whole,
-                x_range: Some((x0, x1)),
-                y_range: None,
-            },
-            Panel {
-                caption: format!(
-                    "adhesive well (pull-out against the spring){}",
-                    if r.validity.holds {
-                        String::new()
-                    } else {
-                        format!("; {}", r.validity.words())
-                    }
-                ),
-                x_label: "separation d [nm]".into(),
-                y_label: "pressure [MPa]".into(),
-                series: wells,
-                x_range: Some(zoom_x),
-                y_range: Some((-1.6 * well, 1.0 * well)),
-            },
-        ],
-    )
+    let mut panels = vec![
+        Panel {
+            caption,
+            x_label: "separation d [nm]".into(),
+            y_label: "pressure [MPa]".into(),
+            series: whole,
+            x_range: Some((x0, x1)),
+            y_range: None,
+        },
+        Panel {
+            caption: format!(
+                "adhesive well (pull-out against the spring){}",
+                if r.validity.holds {
+                    String::new()
+                } else {
+                    format!("; {}", r.validity.words())
+                }
+            ),
+            x_label: "separation d [nm]".into(),
+            y_label: "pressure [MPa]".into(),
+            series: wells,
+            x_range: Some(zoom_x),
+            y_range: Some((-1.6 * well, 1.0 * well)),
+        },
+    ];
+    panels.extend(contact_panels(r));
+    plot::svg(&r.title, &panels)
+}
+
+/// The contact against cycle: real contact area (and, with conduction, the contact
+/// resistance) under the hold voltage and at the end of impact. None without states.
+fn contact_panels(r: &SwitchResult) -> Vec<Panel> {
+    type Pick = fn(&stiction_model::switch::ContactState) -> Option<f64>;
+    let series = |name: &str, pick: Pick, scale: f64| -> Vec<Series> {
+        let hold: Vec<(f64, f64)> = r
+            .cycles
+            .iter()
+            .filter_map(|c| Some((c.cycle as f64, pick(c.hold.as_ref()?)? * scale)))
+            .collect();
+        let end: Vec<(f64, f64)> = r
+            .cycles
+            .iter()
+            .filter_map(|c| Some((c.cycle as f64, pick(c.end_of_impact.as_ref()?)? * scale)))
+            .collect();
+        [
+            (
+                format!("{name} under the hold ({:.4} V)", r.hold_voltage),
+                hold,
+            ),
+            (format!("{name} at the end of impact"), end),
+        ]
+        .into_iter()
+        .filter(|(_, p)| !p.is_empty())
+        .map(|(name, points)| Series { name, points })
+        .collect()
+    };
+    let last = r.cycles.last().map_or(1.0, |c| c.cycle as f64);
+    let x_range = Some((0.5, last + 0.5));
+    let mut out = Vec::new();
+    let area = series("A_r / A", |c| Some(c.real_contact_fraction), 100.0);
+    if !area.is_empty() {
+        out.push(Panel {
+            caption: "real contact area against cycle".into(),
+            x_label: "cycle".into(),
+            y_label: "real contact area [% of the contact area]".into(),
+            series: area,
+            x_range,
+            y_range: None,
+        });
+    }
+    let resistance = series("R", |c| c.contact_resistance, 1e3);
+    if !resistance.is_empty() {
+        out.push(Panel {
+            caption: "contact resistance against cycle (spots in parallel, Holm-Sharvin)".into(),
+            x_label: "cycle".into(),
+            y_label: "contact resistance [mOhm]".into(),
+            series: resistance,
+            x_range,
+            y_range: None,
+        });
+    }
+    out
 }
 
 impl Render for SwitchResult {
@@ -308,25 +362,39 @@ impl Render for SwitchResult {
             return s;
         }
         s += &table_cycles(self);
+        s += &table_contact(self);
         s += &table_verdict(self);
         s
     }
 
     fn csv(&self) -> String {
         let mut s = String::from(
-            "cycle,d_e_m,pull_out_pressure_pa,pull_out_separation_m,sticks,pull_out_ratio,deepened\n",
+            "cycle,d_e_m,pull_out_pressure_pa,pull_out_separation_m,sticks,pull_out_ratio,deepened,hold_status,hold_separation_m,hold_real_contact_fraction,hold_spot_density_per_m2,hold_mean_spot_radius_m,hold_contact_resistance_ohm,end_real_contact_fraction,end_spot_density_per_m2,end_mean_spot_radius_m,end_contact_resistance_ohm\n",
         );
+        let opt = |v: Option<f64>| v.map_or(String::new(), csv_num);
         for c in &self.cycles {
+            let h = c.hold.as_ref();
+            let e = c.end_of_impact.as_ref();
             let _ = writeln!(
                 s,
-                "{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 c.cycle,
                 csv_num(c.d_e),
                 csv_num(c.pull_out_pressure),
                 csv_num(c.pull_out_separation),
                 c.sticks,
                 csv_num(c.pull_out_ratio),
-                c.deepened
+                c.deepened,
+                c.hold_status,
+                opt(h.map(|h| h.separation)),
+                opt(h.map(|h| h.real_contact_fraction)),
+                opt(h.map(|h| h.spot_density)),
+                opt(h.map(|h| h.mean_spot_radius)),
+                opt(h.and_then(|h| h.contact_resistance)),
+                opt(e.map(|e| e.real_contact_fraction)),
+                opt(e.map(|e| e.spot_density)),
+                opt(e.map(|e| e.mean_spot_radius)),
+                opt(e.and_then(|e| e.contact_resistance)),
             );
         }
         if let Some(e) = &self.elastic {
@@ -464,6 +532,87 @@ fn table_cycles(r: &SwitchResult) -> String {
             "-",
             e.pull_out_ratio,
             if e.sticks { "sticks" } else { "releases" }
+        );
+    }
+    s
+}
+
+/// The contact under the hold voltage, per cycle computed (none when none was).
+fn table_contact(r: &SwitchResult) -> String {
+    let rows: Vec<_> = r
+        .cycles
+        .iter()
+        .filter(|c| c.hold_status != "not_computed")
+        .collect();
+    if rows.is_empty() {
+        return String::new();
+    }
+    let mut s = String::new();
+    let _ = writeln!(s);
+    let _ = writeln!(
+        s,
+        "closed under {}: {} per contact area{}",
+        match r.hold_force {
+            Some(f) => format!(
+                "the hold force {} (hold_force over phi x electrode_area)",
+                render::si(f, "N", 4)
+            ),
+            None => format!(
+                "the hold voltage {:.4} V (eps0 eps_r^2 U^2/(2 t_d^2) - K_s d0, over phi)",
+                r.hold_voltage
+            ),
+        },
+        render::pressure(r.hold_pressure),
+        if rows.iter().any(|c| c.has_resistance()) {
+            ""
+        } else {
+            "; contact resistance: give contact.resistivity, contact.mean_free_path and switch.electrode_area"
+        }
+    );
+    let _ = writeln!(
+        s,
+        "{:>8} {:>20} {:>12} {:>12} {:>14} {:>12} {:>14} {:>14}",
+        "cycle", "rest d", "A_r/A hold", "A_r/A end", "spots [1/um^2]", "mean a", "R hold", "R end"
+    );
+    let ohm = |v: Option<f64>| v.map_or("-".to_string(), |v| render::si(v, "Ohm", 4));
+    for c in rows {
+        let h = c.hold.as_ref();
+        let e = c.end_of_impact.as_ref();
+        let rest = match (c.hold_status, h) {
+            ("deeper_than_impact", Some(h)) => {
+                format!("{} (deeper)", render::si(h.separation, "m", 4))
+            }
+            (_, Some(h)) => render::si(h.separation, "m", 4),
+            (status, None) => status.replace('_', " "),
+        };
+        let _ = writeln!(
+            s,
+            "{:>8} {:>20} {:>12} {:>12} {:>14} {:>12} {:>14} {:>14}",
+            c.cycle,
+            rest,
+            h.map_or("-".into(), |h| format!(
+                "{:.4}%",
+                100.0 * h.real_contact_fraction
+            )),
+            e.map_or("-".into(), |e| format!(
+                "{:.4}%",
+                100.0 * e.real_contact_fraction
+            )),
+            h.map_or("-".into(), |h| format!("{:.4}", h.spot_density * 1e-12)),
+            h.map_or("-".into(), |h| render::si(h.mean_spot_radius, "m", 4)),
+            ohm(h.and_then(|h| h.contact_resistance)),
+            ohm(e.and_then(|e| e.contact_resistance)),
+        );
+    }
+    if let Some(i) = r
+        .cycles
+        .iter()
+        .find_map(|c| c.hold.as_ref().and_then(|h| h.interaction_resistance))
+    {
+        let _ = writeln!(
+            s,
+            "R: the spots in parallel (Holm-Sharvin, Wexler); their interaction over the contact area adds {} (Greenwood 1966, uniform spots over phi x electrode_area as one circle; contact_resistance_with_interaction)",
+            render::si(i, "Ohm", 4)
         );
     }
     s

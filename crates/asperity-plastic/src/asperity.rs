@@ -186,6 +186,29 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         Ok(f)
     }
 
+    /// The adhesion law's contact radius on the effective sphere, R_eff at delta - delta_res
+    /// (the same sphere the force comes from; under the bounded reload the force is capped
+    /// but the geometry is the effective sphere's).
+    fn contact_radius(
+        &self,
+        delta: f64,
+        history: AsperityHistory,
+        path: Path,
+    ) -> Result<f64, LawError> {
+        let delta_max = match path {
+            Path::Approach => history.delta_max.max(delta),
+            Path::Retract { from } => history.delta_max.max(from),
+        };
+        let e = self.effective(delta, delta_max);
+        let path = match path {
+            Path::Approach => Path::Approach,
+            Path::Retract { from } => Path::Retract {
+                from: from - e.state.delta_res,
+            },
+        };
+        self.adhesion.contact_radius(e.radius, e.interference, path)
+    }
+
     fn delta_cp(&self) -> f64 {
         self.plasticity.delta_cp()
     }

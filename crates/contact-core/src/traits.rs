@@ -57,6 +57,20 @@ pub trait AdhesionLaw {
         let _ = radius;
         Ok(Vec::new())
     }
+
+    /// Radius a (m) of the contact (the region where the surfaces touch, not the cohesive
+    /// zone around it) of a sphere of `radius` (m) at `delta` (m) on `path`; 0 out of
+    /// contact. By default the Hertz geometry, a = sqrt(R delta) for delta > 0, which is
+    /// the contact of Hertz and of DMT; laws whose adhesion widens the contact (JKR,
+    /// Maugis-Dugdale) override it.
+    fn contact_radius(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
+        let _ = path;
+        Ok(if delta > 0.0 {
+            (radius * delta).sqrt()
+        } else {
+            0.0
+        })
+    }
 }
 
 /// Deformed state of an asperity after loading to `delta_max` (paper eqs 4-5).
@@ -139,6 +153,9 @@ impl<T: AdhesionLaw + ?Sized> AdhesionLaw for &T {
     fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
         (**self).force(radius, delta, path)
     }
+    fn contact_radius(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
+        (**self).contact_radius(radius, delta, path)
+    }
     fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
         (**self).jumps(radius)
     }
@@ -214,6 +231,9 @@ macro_rules! adhesion_through {
             fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
                 (**self).force(radius, delta, path)
             }
+            fn contact_radius(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
+                (**self).contact_radius(radius, delta, path)
+            }
             fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
                 (**self).jumps(radius)
             }
@@ -271,6 +291,23 @@ pub trait AsperityModel {
 
     /// Plastic state for a history.
     fn plastic_state(&self, history: AsperityHistory) -> PlasticState;
+
+    /// Radius (m) of the contact spot at interference `delta` (m) given the `history` and
+    /// `path` (as [`Self::force`]); 0 out of contact. By default the Hertz geometry of the
+    /// initial radius; composed asperities ask their adhesion law on the effective sphere.
+    fn contact_radius(
+        &self,
+        delta: f64,
+        history: AsperityHistory,
+        path: Path,
+    ) -> Result<f64, LawError> {
+        let _ = (history, path);
+        Ok(if delta > 0.0 {
+            (self.radius() * delta).sqrt()
+        } else {
+            0.0
+        })
+    }
 
     /// Values of delta_max (m) where the asperity's state or loading force jumps or bends:
     /// delta_CP first (if it yields), then the plasticity law's declared breaks

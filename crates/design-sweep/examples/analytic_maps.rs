@@ -18,6 +18,8 @@ fn point(ratio: f64, restoring: f64, closes: bool) -> DesignPoint {
         closes,
         validity_holds: true,
         accommodation_cause: None,
+        contact_resistance: None,
+        real_contact_fraction: None,
     }
 }
 

@@ -44,6 +44,9 @@ pub enum DesignError {
         /// What is wrong.
         reason: String,
     },
+    /// A second requirement (`--require`) that does not parse.
+    #[error("invalid requirement {0}")]
+    Requirement(String),
     /// Invalid threshold-search input (range, tolerance, field name).
     #[error("invalid threshold search: {0}")]
     Threshold(String),

@@ -27,7 +27,8 @@
 //!                      restoring_pressure_pa: k, cycles_to_accommodation: Some(4),
 //!                      first_sticking_cycle: (ratio > 1.0).then_some(1),
 //!                      sticks: ratio > 1.0, closes: true, validity_holds: true,
-//!                      accommodation_cause: None })
+//!                      accommodation_cause: None, contact_resistance: None,
+//!                      real_contact_fraction: None })
 //! };
 //! let grid = Grid::parse(&["switch.k_s=1e2:1e5:log:7"])?;
 //! let request = MapRequest { scene: serde_json::json!({"name": "demo"}), grid,
@@ -50,6 +51,7 @@ mod grid;
 mod map;
 mod plot;
 mod point;
+mod requirement;
 mod shard;
 mod table;
 mod threshold;
@@ -64,11 +66,12 @@ pub use map::{
     MAX_MAP_BYTES,
 };
 pub use point::{AccommodationCause, DesignPoint, PointError, Status};
+pub use requirement::{Bound, Quantity, Requirement};
 pub use shard::Shard;
 pub use table::{map_table, threshold_table};
 pub use threshold::{
-    ratio_rel_error, threshold, Crossing, CrossingKind, FreeSide, ScanPoint, Threshold,
-    ThresholdOptions,
+    ratio_rel_error, threshold, threshold_with, Crossing, CrossingKind, FreeSide,
+    RequirementCrossing, RequirementReport, ScanPoint, Threshold, ThresholdOptions,
 };
 
 /// Plot title and the unit of each field (`switch.k_s` -> `Pa/m`), for plots and tables.

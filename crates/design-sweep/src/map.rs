@@ -2,6 +2,7 @@
 
 use crate::grid::Grid;
 use crate::point::{guarded, DesignPoint, PointError, Status};
+use crate::requirement::Requirement;
 use crate::shard::Shard;
 use crate::DesignError;
 use rayon::prelude::*;
@@ -49,7 +50,7 @@ fn kind(m: &std::fs::Metadata) -> &'static str {
 }
 
 /// The columns of `map.csv` after the varied fields, in order.
-pub const CSV_COLUMNS: [&str; 10] = [
+pub const CSV_COLUMNS: [&str; 12] = [
     "pull_out_ratio",
     "largest_pull_out_pa",
     "restoring_pressure_pa",
@@ -59,6 +60,8 @@ pub const CSV_COLUMNS: [&str; 10] = [
     "closes",
     "validity_holds",
     "accommodation_cause",
+    "contact_resistance",
+    "real_contact_fraction",
     "status",
 ];
 
@@ -109,6 +112,7 @@ pub struct Map {
     accuracy: String,
     shard: Option<Shard>,
     points: Vec<MapPoint>,
+    requirement: Option<Requirement>,
 }
 
 /// Evaluates the points of `request` (all, or its shard's) in parallel on the current
@@ -163,6 +167,7 @@ where
         accuracy,
         shard,
         points,
+        requirement: None,
     }
 }
 
@@ -180,6 +185,32 @@ impl Map {
     /// The accuracy mode's name.
     pub fn accuracy(&self) -> &str {
         &self.accuracy
+    }
+
+    /// The map with a second requirement beside freedom from stiction
+    /// (`--require contact_resistance<1`): `map.json` echoes it and marks each point's
+    /// `meets_requirement` and `in_window` (free of stiction and meeting it).
+    pub fn with_requirement(mut self, requirement: Option<Requirement>) -> Self {
+        self.requirement = requirement;
+        self
+    }
+
+    /// The second requirement, if any.
+    pub fn requirement(&self) -> Option<&Requirement> {
+        self.requirement.as_ref()
+    }
+
+    /// The points in the design window: free of stiction and meeting the requirement
+    /// (empty without one).
+    pub fn window(&self) -> Vec<&MapPoint> {
+        match &self.requirement {
+            Some(r) => self
+                .points
+                .iter()
+                .filter(|p| p.design.is_some_and(|d| r.in_window(&d)))
+                .collect(),
+            None => Vec::new(),
+        }
     }
 
     /// The shard this map is part of (`None` for a whole or merged map).
@@ -230,8 +261,16 @@ impl Map {
                         Some(crate::AccommodationCause::NonDeepening) => "non_deepening".into(),
                         None => String::new(),
                     });
+                    row.push(
+                        d.contact_resistance
+                            .map_or(String::new(), |v| format!("{v:e}")),
+                    );
+                    row.push(
+                        d.real_contact_fraction
+                            .map_or(String::new(), |v| format!("{v:e}")),
+                    );
                 }
-                None => row.extend(std::iter::repeat_n(String::new(), 9)),
+                None => row.extend(std::iter::repeat_n(String::new(), 11)),
             }
             row.push(p.status.word().to_owned());
             w.write_record(&row).map_err(csv_err)?;
@@ -398,6 +437,8 @@ impl Map {
                         closes,
                         validity_holds: p.validity_holds.unwrap_or(true),
                         accommodation_cause: p.accommodation_cause,
+                        contact_resistance: p.contact_resistance,
+                        real_contact_fraction: p.real_contact_fraction,
                     };
                     if closes != (status == Status::Ok) {
                         return Err(bad(format!(
@@ -410,7 +451,10 @@ impl Map {
                     Some(d)
                 }
                 (false, None, None, None, None, None)
-                    if p.cycles_to_accommodation.is_none() && p.first_sticking_cycle.is_none() =>
+                    if p.cycles_to_accommodation.is_none()
+                        && p.first_sticking_cycle.is_none()
+                        && p.contact_resistance.is_none()
+                        && p.real_contact_fraction.is_none() =>
                 {
                     None
                 }
@@ -421,6 +465,18 @@ impl Map {
                     )))
                 }
             };
+            // the window marks are derived: present exactly with a requirement, and true
+            let marks = match (&m.requirement, &design) {
+                (Some(r), Some(d)) => (r.met(d), Some(r.in_window(d))),
+                (Some(_), None) => (None, Some(false)),
+                (None, _) => (None, None),
+            };
+            if (p.meets_requirement, p.in_window) != marks {
+                return Err(bad(format!(
+                    "point {i}: meets_requirement = {:?}, in_window = {:?} do not follow from its values and the map's requirement ({:?}, {:?} expected)",
+                    p.meets_requirement, p.in_window, marks.0, marks.1
+                )));
+            }
             points.push(MapPoint {
                 index: i,
                 values,
@@ -434,6 +490,7 @@ impl Map {
             accuracy: m.accuracy,
             shard: m.shard,
             points,
+            requirement: m.requirement,
         })
     }
 
@@ -449,6 +506,7 @@ impl Map {
             sticking: 0,
             min_ratio: None,
             max_ratio: None,
+            in_window: self.requirement.map(|_| self.window().len()),
         };
         for p in &self.points {
             match &p.status {
@@ -495,6 +553,8 @@ pub struct MapSummary {
     pub min_ratio: Option<(usize, f64)>,
     /// (index, ratio) of the largest ratio among closing points.
     pub max_ratio: Option<(usize, f64)>,
+    /// Points free of stiction and meeting the requirement (with a requirement).
+    pub in_window: Option<usize>,
 }
 
 fn opt(v: Option<usize>) -> String {
@@ -570,6 +630,16 @@ where
                 ),
             ));
         }
+        if m.requirement != first.requirement {
+            return Err(refuse(
+                label,
+                format!(
+                    "requirement {} differs from {first_label}'s {}",
+                    m.requirement.map_or("(none)".into(), |r| r.to_string()),
+                    first.requirement.map_or("(none)".into(), |r| r.to_string())
+                ),
+            ));
+        }
         if let Some(other) = owner.insert(s.k, label) {
             return Err(refuse(label, format!("part {s} is also in {other}")));
         }
@@ -610,10 +680,11 @@ where
             ),
         ));
     }
-    let (scene, grid, accuracy) = (
+    let (scene, grid, accuracy, requirement) = (
         first.scene.clone(),
         first.grid.clone(),
         first.accuracy.clone(),
+        first.requirement,
     );
     let mut points: Vec<MapPoint> = shards.into_iter().flat_map(|(_, m)| m.points).collect();
     points.sort_by_key(|p| p.index);
@@ -623,6 +694,7 @@ where
         accuracy,
         shard: None,
         points,
+        requirement,
     })
 }
 
@@ -672,6 +744,8 @@ struct MapOut<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     shard: Option<Shard>,
     grid: &'a Grid,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    requirement: Option<Requirement>,
     scene: &'a Value,
     points: Vec<PointOut<'a>>,
 }
@@ -685,6 +759,10 @@ struct PointOut<'a> {
     detail: Option<&'a str>,
     #[serde(flatten)]
     design: Option<&'a DesignPoint>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    meets_requirement: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    in_window: Option<bool>,
 }
 
 /// Field values as a JSON object in axis order.
@@ -709,6 +787,7 @@ impl Serialize for Map {
             accuracy: &self.accuracy,
             shard: self.shard,
             grid: &self.grid,
+            requirement: self.requirement,
             scene: &self.scene,
             points: self
                 .points
@@ -719,6 +798,12 @@ impl Serialize for Map {
                     status: p.status.word(),
                     detail: p.status.detail(),
                     design: p.design.as_ref(),
+                    meets_requirement: self
+                        .requirement
+                        .and_then(|r| p.design.and_then(|d| r.met(&d))),
+                    in_window: self
+                        .requirement
+                        .map(|r| p.design.is_some_and(|d| r.in_window(&d))),
                 })
                 .collect(),
         }
@@ -735,6 +820,8 @@ struct MapIn {
     #[serde(default)]
     shard: Option<Shard>,
     grid: Grid,
+    #[serde(default)]
+    requirement: Option<Requirement>,
     scene: Value,
     points: Vec<PointIn>,
 }
@@ -765,4 +852,12 @@ struct PointIn {
     validity_holds: Option<bool>,
     #[serde(default)]
     accommodation_cause: Option<crate::AccommodationCause>,
+    #[serde(default)]
+    contact_resistance: Option<f64>,
+    #[serde(default)]
+    real_contact_fraction: Option<f64>,
+    #[serde(default)]
+    meets_requirement: Option<bool>,
+    #[serde(default)]
+    in_window: Option<bool>,
 }

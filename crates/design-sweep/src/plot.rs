@@ -335,6 +335,17 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
             })
         }))
         .map_err(plot_err)?;
+    if let Some(r) = map.requirement() {
+        let ring = GREEN.stroke_width(2);
+        chart
+            .draw_series(pts.iter().filter_map(|(x, p)| {
+                let d = p.design.filter(|d| r.in_window(d))?;
+                Some(Circle::new((*x, to_y(d.pull_out_ratio)), 8, ring))
+            }))
+            .map_err(plot_err)?
+            .label(format!("free and {r}"))
+            .legend(move |(x, y)| Circle::new((x + 10, y), 8, ring));
+    }
     let no_close: Vec<f64> = pts
         .iter()
         .filter(|(_, p)| p.status.has_design() && p.ratio() == Some(0.0))
@@ -502,6 +513,18 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
         cells.push(Rectangle::new([(x0, y0), (x1, y1)], fill.filled()));
     }
     chart.draw_series(cells).map_err(plot_err)?;
+    // the design window (free and meeting the requirement): framed cells
+    let window: Vec<_> = map
+        .window()
+        .iter()
+        .map(|p| {
+            let idx = g.indices(p.index);
+            let ((x0, x1), (y0, y1)) = (ex[idx[0]], ey[idx[1]]);
+            Rectangle::new([(x0, y0), (x1, y1)], GREEN.stroke_width(3))
+        })
+        .collect();
+    let any_window = !window.is_empty();
+    chart.draw_series(window).map_err(plot_err)?;
     chart
         .draw_series(
             crosses
@@ -524,6 +547,13 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
     }
     if any_failed {
         legend.push_str("; x: failed or out of domain");
+    }
+    if let Some(r) = map.requirement() {
+        legend.push_str(&if any_window {
+            format!("; green frame: free and {r}")
+        } else {
+            format!("; no point free and {r}")
+        });
     }
     main.draw_text(&legend, &(FONT, 14).into_text_style(&main), (95, 720 - 22))
         .map_err(plot_err)?;

@@ -29,6 +29,14 @@ pub struct DesignPoint {
     /// not deepen (every later cycle repeats it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accommodation_cause: Option<AccommodationCause>,
+    /// Contact resistance of the closed switch under the hold voltage after the last cycle
+    /// (ohm), when the scene gives the films' conduction and the electrode area.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_resistance: Option<f64>,
+    /// Real contact area over the contact area under the hold voltage after the last cycle
+    /// (-), when the contact state was computed and the switch rests shut.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub real_contact_fraction: Option<f64>,
 }
 
 fn holds() -> bool {
@@ -59,6 +67,8 @@ impl DesignPoint {
             closes: false,
             validity_holds: true,
             accommodation_cause: None,
+            contact_resistance: None,
+            real_contact_fraction: None,
         }
     }
 
@@ -97,6 +107,20 @@ impl DesignPoint {
             };
             return Err(format!("{name} {what}: must be finite and >= 0"));
         }
+        if let Some(r) = self.contact_resistance {
+            if !(r.is_finite() && r > 0.0) {
+                return Err(format!(
+                    "contact_resistance = {r:e}: must be finite and > 0"
+                ));
+            }
+        }
+        if let Some(f) = self.real_contact_fraction {
+            if !(f.is_finite() && f >= 0.0) {
+                return Err(format!(
+                    "real_contact_fraction = {f:e}: must be finite and >= 0"
+                ));
+            }
+        }
         for (name, c) in [
             ("cycles_to_accommodation", self.cycles_to_accommodation),
             ("first_sticking_cycle", self.first_sticking_cycle),
@@ -122,6 +146,10 @@ impl DesignPoint {
                 Some(("accommodation_cause", format!("{c:?}")))
             } else if !self.validity_holds {
                 Some(("validity_holds", "false".to_owned()))
+            } else if let Some(r) = self.contact_resistance {
+                Some(("contact_resistance", format!("{r:e}")))
+            } else if let Some(f) = self.real_contact_fraction {
+                Some(("real_contact_fraction", format!("{f:e}")))
             } else {
                 self.first_sticking_cycle
                     .map(|c| ("first_sticking_cycle", c.to_string()))

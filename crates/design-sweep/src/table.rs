@@ -100,6 +100,60 @@ pub fn threshold_table(t: &Threshold, labels: &Labels) -> String {
             ),
         );
     }
+    if let Some(req) = &t.requirement {
+        let q = req.requirement.quantity;
+        for c in &req.crossings {
+            row(
+                &mut s,
+                "requirement",
+                format!(
+                    "{} crosses {} at {} +- {}: met {} it{}",
+                    q.name(),
+                    with_unit(
+                        req.requirement.limit,
+                        4,
+                        Some(q.unit()).filter(|u| !u.is_empty())
+                    ),
+                    v(c.value),
+                    with_unit(c.uncertainty, 2, unit),
+                    c.met_side.word(),
+                    c.detail
+                        .as_deref()
+                        .map(|d| format!("; unresolved: {d}"))
+                        .unwrap_or_default()
+                ),
+            );
+        }
+        if req.crossings.is_empty() {
+            let met = t.scan.iter().any(|p| p.meets_requirement == Some(true));
+            row(
+                &mut s,
+                "requirement",
+                format!(
+                    "{}: {} over the closing range",
+                    req.requirement,
+                    if met { "met" } else { "not met" }
+                ),
+            );
+        }
+        row(
+            &mut s,
+            "design window",
+            if req.window.is_empty() {
+                format!(
+                    "none: no design of the range is both free of stiction and {}",
+                    req.requirement
+                )
+            } else {
+                req.window
+                    .iter()
+                    .map(|w| format!("{} .. {}", v(w[0]), v(w[1])))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+                    + &format!(" (free of stiction and {})", req.requirement)
+            },
+        );
+    }
     row(&mut s, "evaluations", t.evaluations.to_string());
     if t.crossings.len() > 1 {
         let _ = writeln!(s, "\ncrossings ({}):", t.crossings.len());
@@ -234,6 +288,20 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
             &mut s,
             "largest ratio",
             format!("{} at {}", fmt_sig(r, 4), at(i)),
+        );
+    }
+    if let (Some(r), Some(n)) = (map.requirement(), sum.in_window) {
+        row(
+            &mut s,
+            "design window",
+            format!(
+                "{n} of {} points free of stiction with {r}{}",
+                sum.points,
+                match map.window().first() {
+                    Some(p) => format!(" (e.g. {})", at(p.index)),
+                    None => String::new(),
+                }
+            ),
         );
     }
     if g.dim() == 1 {

@@ -2,6 +2,7 @@
 
 use crate::grid::{spaced, Spacing};
 use crate::point::{check_field, guarded, DesignPoint, PointError};
+use crate::requirement::Requirement;
 use crate::DesignError;
 use contact_core::numeric::{zeroin, Sample, ZeroinStop};
 use rayon::prelude::*;
@@ -115,6 +116,15 @@ pub struct ScanPoint {
     /// Whether the model holds at the point, for `ok` and `does_not_close`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub validity_holds: Option<bool>,
+    /// Contact resistance under the hold voltage (ohm), when computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_resistance: Option<f64>,
+    /// Real contact area fraction under the hold voltage, when computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub real_contact_fraction: Option<f64>,
+    /// Whether it meets the requirement, with one (absent where the quantity is).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meets_requirement: Option<bool>,
 }
 
 /// One crossing of ratio = 1.
@@ -157,6 +167,36 @@ pub struct ClosureBoundary {
     pub bracket: [f64; 2],
     /// Evaluations spent refining it (after the scan).
     pub evaluations: usize,
+    /// Why it could not be refined, if it could not.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detail: Option<String>,
+}
+
+/// Where a second requirement (`--require contact_resistance<1`) flips along the field,
+/// and the window where the design is both free of stiction and meets it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RequirementReport {
+    /// The requirement, as `contact_resistance<1e0`.
+    pub requirement: Requirement,
+    /// Every value where the requirement flips, ascending.
+    pub crossings: Vec<RequirementCrossing>,
+    /// The intervals [lo, hi] of the range where the switch closes, is free of stiction
+    /// and meets the requirement, ascending (empty: no such design in the range). Their
+    /// ends are crossings and closure boundaries, within their uncertainties.
+    pub window: Vec<[f64; 2]>,
+}
+
+/// One value where the requirement flips.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RequirementCrossing {
+    /// The value (secant estimate in the final bracket).
+    pub value: f64,
+    /// The side where the requirement is met (`above` or `below`).
+    pub met_side: FreeSide,
+    /// Half the final bracket, plus the root tolerance.
+    pub uncertainty: f64,
+    /// The final bracket, ascending.
+    pub bracket: [f64; 2],
     /// Why it could not be refined, if it could not.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub detail: Option<String>,
@@ -209,6 +249,9 @@ pub struct Threshold {
     pub closure_boundaries: Vec<ClosureBoundary>,
     /// The scan, ascending value.
     pub scan: Vec<ScanPoint>,
+    /// The second requirement, its crossings and the design window (absent without one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub requirement: Option<RequirementReport>,
 }
 
 impl Threshold {
@@ -243,6 +286,27 @@ pub fn threshold<F, E>(
     to: f64,
     eval: F,
     options: &ThresholdOptions,
+) -> Result<Threshold, DesignError>
+where
+    F: Fn(f64) -> Result<DesignPoint, E> + Sync,
+    E: Into<PointError>,
+{
+    threshold_with(field, from, to, eval, options, None)
+}
+
+/// [`threshold`] with a second requirement: besides the crossings of ratio = 1, every
+/// sign change of the requirement's margin ln(q / limit) between neighbouring closing
+/// scan points is refined the same way, and the range is cut at every crossing and closure
+/// boundary into pieces whose state is read at a scan point inside (or evaluated at the
+/// piece's middle): the window is the union of the pieces free of stiction that meet the
+/// requirement.
+pub fn threshold_with<F, E>(
+    field: &str,
+    from: f64,
+    to: f64,
+    eval: F,
+    options: &ThresholdOptions,
+    requirement: Option<&Requirement>,
 ) -> Result<Threshold, DesignError>
 where
     F: Fn(f64) -> Result<DesignPoint, E> + Sync,
@@ -311,6 +375,9 @@ where
             pull_out_ratio: design.map(|d| d.pull_out_ratio),
             closes: design.map(|d| d.closes),
             validity_holds: design.map(|d| d.validity_holds),
+            contact_resistance: design.and_then(|d| d.contact_resistance),
+            real_contact_fraction: design.and_then(|d| d.real_contact_fraction),
+            meets_requirement: requirement.and_then(|r| design.and_then(|d| r.met(&d))),
         })
         .collect();
     if ran.is_empty() {
@@ -478,6 +545,23 @@ where
         });
     }
 
+    let requirement = match requirement {
+        None => None,
+        Some(r) => {
+            let report = requirement_report(
+                r,
+                &xs,
+                &evaluated,
+                &crossings,
+                &closure_boundaries,
+                &eval,
+                log,
+                &tol_u,
+                &mut evaluations,
+            );
+            Some(report)
+        }
+    };
     let ratio_of = |i: usize| scan[i].pull_out_ratio;
     let (ratio_at_from, ratio_at_to) = if from < to {
         (ratio_of(0), ratio_of(n - 1))
@@ -510,5 +594,145 @@ where
         closure_boundary: closure_boundaries.first().map(|b| b.value),
         closure_boundaries,
         scan,
+        requirement,
     })
+}
+
+/// The crossings of a requirement and the design window (see [`threshold_with`]).
+#[allow(clippy::too_many_arguments)]
+fn requirement_report<F, E>(
+    r: &Requirement,
+    xs: &[f64],
+    evaluated: &[(crate::point::Status, Option<DesignPoint>)],
+    crossings: &[Crossing],
+    closures: &[ClosureBoundary],
+    eval: &F,
+    log: bool,
+    tol_u: &dyn Fn(f64) -> f64,
+    evaluations: &mut usize,
+) -> RequirementReport
+where
+    F: Fn(f64) -> Result<DesignPoint, E> + Sync,
+    E: Into<PointError>,
+{
+    let to_u = |x: f64| if log { x.ln() } else { x };
+    let from_u = |u: f64| if log { u.exp() } else { u };
+    // (u, margin) of the scan points that close and have the quantity
+    let with_margin: Vec<(f64, f64)> = xs
+        .iter()
+        .zip(evaluated)
+        .filter_map(|(&x, (_, d))| {
+            let d = d.as_ref()?;
+            d.closes
+                .then(|| r.margin(d))
+                .flatten()
+                .map(|m| (to_u(x), m))
+        })
+        .collect();
+    let margin = |u: f64| -> Result<f64, String> {
+        let x = from_u(u);
+        match guarded(|| eval(x)) {
+            (_, Some(d)) if d.closes => r.margin(&d).ok_or_else(|| {
+                format!(
+                    "no {} at {x:e} (the switch opens under the hold voltage)",
+                    r.quantity.name()
+                )
+            }),
+            (_, Some(_)) => Err(format!("does_not_close at {x:e}")),
+            (s, None) => Err(format!(
+                "{} at {x:e}: {}",
+                s.word(),
+                s.detail().unwrap_or_default()
+            )),
+        }
+    };
+    let mut found = Vec::new();
+    for w in with_margin.windows(2) {
+        let ((ua, ma), (ub, mb)) = (w[0], w[1]);
+        if (ma < 0.0) == (mb < 0.0) {
+            continue;
+        }
+        let met_side = if ma < 0.0 {
+            FreeSide::Below
+        } else {
+            FreeSide::Above
+        };
+        let (b, detail) = match zeroin(
+            margin,
+            Sample { x: ua, f: ma },
+            Sample { x: ub, f: mb },
+            tol_u,
+            MAX_REFINE_EVALUATIONS,
+        ) {
+            Ok(b) => (b, None),
+            Err(ZeroinStop::Failed(m, b)) => (b, Some(m)),
+            Err(ZeroinStop::NoConvergence(b)) => (
+                b,
+                Some(format!(
+                    "no convergence after {} evaluations",
+                    b.evaluations
+                )),
+            ),
+        };
+        *evaluations += b.evaluations;
+        let (p, q) = if b.best.x <= b.other.x {
+            (b.best, b.other)
+        } else {
+            (b.other, b.best)
+        };
+        let u = if q.f != p.f && detail.is_none() {
+            (p.x - p.f * (q.x - p.x) / (q.f - p.f)).clamp(p.x, q.x)
+        } else {
+            0.5 * (p.x + q.x)
+        };
+        let (x1, x2) = (from_u(p.x), from_u(q.x));
+        let value = from_u(u);
+        found.push(RequirementCrossing {
+            value,
+            met_side,
+            uncertainty: 0.5 * (x2 - x1) + if log { tol_u(u) * value } else { tol_u(u) },
+            bracket: [x1, x2],
+            detail,
+        });
+    }
+    // cut the range at every boundary; read each piece's state
+    let (lo, hi) = (xs[0], xs[xs.len() - 1]);
+    let mut cuts: Vec<f64> = crossings
+        .iter()
+        .map(|c| c.critical_value)
+        .chain(closures.iter().map(|c| c.value))
+        .chain(found.iter().map(|c| c.value))
+        .filter(|v| *v > lo && *v < hi)
+        .collect();
+    cuts.push(lo);
+    cuts.push(hi);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let mut window: Vec<[f64; 2]> = Vec::new();
+    for piece in cuts.windows(2) {
+        let (a, b) = (piece[0], piece[1]);
+        let inside = xs
+            .iter()
+            .zip(evaluated)
+            .find(|(x, (_, d))| **x > a && **x < b && d.is_some())
+            .and_then(|(_, (_, d))| *d);
+        let design = match inside {
+            Some(d) => Some(d),
+            None => {
+                *evaluations += 1;
+                guarded(|| eval(from_u(0.5 * (to_u(a) + to_u(b))))).1
+            }
+        };
+        if design.is_some_and(|d| r.in_window(&d)) {
+            match window.last_mut() {
+                Some(last) if last[1] == a => last[1] = b,
+                _ => window.push([a, b]),
+            }
+        }
+    }
+    RequirementReport {
+        requirement: *r,
+        crossings: found,
+        window,
+    }
 }

@@ -42,4 +42,4 @@ mod surface;
 
 pub use error::GwError;
 pub use history::{GwHistory, HeightTable};
-pub use surface::{GreenwoodWilliamson, Quadrature, Roughness, TAIL_SIGMAS};
+pub use surface::{ContactSpots, GreenwoodWilliamson, Quadrature, Roughness, TAIL_SIGMAS};

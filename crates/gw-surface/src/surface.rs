@@ -55,6 +55,24 @@ impl Default for Quadrature {
     }
 }
 
+/// The contact spots of a surface at one separation
+/// ([`GreenwoodWilliamson::contact_spots`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct ContactSpots {
+    /// Real contact area over nominal area A_r/A_n (-).
+    pub real_contact_fraction: f64,
+    /// Contact spots per unit nominal area (1/m^2).
+    pub spot_density: f64,
+    /// Mean radius of the spots (m; 0 without contact).
+    pub mean_spot_radius: f64,
+    /// Conductance of the spots in parallel per unit nominal area (S/m^2), when a spot
+    /// conductance was given.
+    pub conductance_per_area: Option<f64>,
+    /// The largest relative error estimate of the integrals.
+    pub relative_error: f64,
+}
+
 /// Greenwood-Williamson surface of asperities `M` with Gaussian heights (eq 14).
 ///
 /// p(d) = N integral F(h - d; delta_max(h), path) phi(h) dh (eq 16 in SI), with the
@@ -450,6 +468,108 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         path: Path,
     ) -> Result<Integral, GwError> {
         self.integral(d, history, path, None)
+    }
+
+    /// The contact spots at separation `d` (m) with `history` on `path`: the real contact
+    /// area over the nominal one, the spots per unit area, their mean radius, and (given
+    /// the conductance of one spot of radius a, S) the conductance per unit nominal area of
+    /// the spots in parallel (S/m^2):
+    ///
+    ///   A_r/A_n = N integral pi a(h)^2 phi(h) dh,   n = N integral [a(h) > 0] phi(h) dh,
+    ///   mean a = N integral a(h) phi(h) dh / n,     G/A_n = N integral g(a(h)) phi(h) dh,
+    ///
+    /// with a(h) the contact radius of the asperity of height h from its law
+    /// ([`AsperityModel::contact_radius`]; an adhesive asperity held by its cohesive zone
+    /// without touching is not a spot), over the same break points and with the same error
+    /// control as the pressure (each integral to the quadrature's relative tolerance of its
+    /// own magnitude).
+    pub fn contact_spots(
+        &self,
+        d: f64,
+        history: &GwHistory,
+        path: Path,
+        spot_conductance: Option<&(dyn Fn(f64) -> f64 + Sync)>,
+    ) -> Result<ContactSpots, GwError> {
+        contact_core::finite("separation", d)?;
+        let Some(points) = self.breakpoints(d, history, path)? else {
+            return Ok(ContactSpots::default());
+        };
+        let sigma = self.sigma_s();
+        let us: Vec<f64> = points.iter().map(|h| h / sigma).collect();
+        let (h_lo, h_hi) = (points[0], points[points.len() - 1]);
+        let magnitude = h_lo.abs().max(h_hi.abs()).max(d.abs());
+        let tol = QuadTolerance {
+            rel: self.quadrature.rel_tol,
+            rel_of_abs: 1e-3 * self.quadrature.rel_tol,
+            abs: 0.0,
+            max_width: START_PANEL_SIGMAS,
+            max_panels: 20_000,
+            noise: NOISE * (magnitude / (h_hi - h_lo)).max(1.0),
+        };
+        let n = self.density();
+        let radius = |u: f64| -> Result<f64, GwError> {
+            let h = sigma * u;
+            let a = self.law(
+                h,
+                d,
+                self.asperity.contact_radius(
+                    h - d,
+                    self.history_at(history, h),
+                    Self::asperity_path(h, path),
+                ),
+            )?;
+            if a.is_finite() && a >= 0.0 {
+                Ok(a)
+            } else {
+                Err(GwError::LawNotFinite {
+                    height: h,
+                    d,
+                    value: a,
+                })
+            }
+        };
+        let integral = |what: &'static str, g: &dyn Fn(f64) -> f64| {
+            integrate(
+                what,
+                |u: f64| Ok::<_, GwError>(g(radius(u)?) * self.normal.pdf(u)),
+                &us,
+                true,
+                &self.rule,
+                tol,
+            )
+        };
+        let area = integral("real contact area", &|a| std::f64::consts::PI * a * a)?;
+        let count = integral("contact spots", &|a| if a > 0.0 { 1.0 } else { 0.0 })?;
+        let sum_a = integral("spot radii", &|a| a)?;
+        let conductance = match spot_conductance {
+            Some(g) => Some(integral("spot conductance", &|a| {
+                if a > 0.0 {
+                    g(a)
+                } else {
+                    0.0
+                }
+            })?),
+            None => None,
+        };
+        let spots = n * count.value;
+        Ok(ContactSpots {
+            real_contact_fraction: n * area.value,
+            spot_density: spots,
+            mean_spot_radius: if count.value > 0.0 {
+                sum_a.value / count.value
+            } else {
+                0.0
+            },
+            conductance_per_area: conductance.map(|c| n * c.value),
+            relative_error: [
+                (area.error, area.value),
+                (count.error, count.value),
+                (sum_a.error, sum_a.value),
+            ]
+            .into_iter()
+            .map(|(e, v)| if v > 0.0 { e / v } else { 0.0 })
+            .fold(0.0, f64::max),
+        })
     }
 
     fn jumps_of(&self, history: AsperityHistory) -> Result<contact_core::Jumps, GwError> {

@@ -173,6 +173,11 @@ impl Jkr {
 
     /// Nondimensional force on the stable branch at Delta >= Delta_t.
     pub fn stable_force(delta: f64) -> Result<f64, MkError> {
+        Ok(Self::stable_point(delta)?.1)
+    }
+
+    /// Nondimensional contact radius A and force on the stable branch at Delta >= Delta_t.
+    pub fn stable_point(delta: f64) -> Result<(f64, f64), MkError> {
         let dt = Self::turning_delta();
         if delta < dt {
             return Err(MkError::BelowTurningPoint { delta, turning: dt });
@@ -205,7 +210,7 @@ impl Jkr {
             )?
         };
         let a = y * y;
-        Ok(a * a * a - 6f64.sqrt() * a * y)
+        Ok((a, a * a * a - 6f64.sqrt() * a * y))
     }
 
     /// Nondimensional force on a path (see [`MdCurve::force`] for the path rule).
@@ -242,6 +247,20 @@ impl AdhesionLaw for Jkr {
         Ok(Jumps {
             jump_in: 0.0,
             jump_out: Self::turning_delta() * sc.interference,
+        })
+    }
+    /// The JKR contact radius a = A (pi w R^2 / K)^(1/3), A = y^2 of the stable branch;
+    /// 0 when detached.
+    fn contact_radius(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
+        let sc = Scales::new(self.p.k, self.p.work_of_adhesion, radius)?;
+        finite("delta", delta)?;
+        let d = delta / sc.interference;
+        let attached = d >= 0.0
+            || matches!(nd_path(path, sc.interference), Path::Retract { from } if from >= 0.0 && d >= Self::turning_delta());
+        Ok(if attached {
+            Self::stable_point(d)?.0 * sc.radius
+        } else {
+            0.0
         })
     }
 }
@@ -336,6 +355,16 @@ impl AdhesionLaw for MaugisKim {
     /// -z0: the rigid gap at the centre equals the Dugdale range (no turning point needed).
     fn jump_in(&self, _radius: f64) -> Result<f64, LawError> {
         Ok(-self.p.z0)
+    }
+    /// The Maugis-Dugdale contact radius a = A (pi w R^2 / K)^(1/3) of the stable point
+    /// (eqs 7-9); 0 detached and on the non-contact branch.
+    fn contact_radius(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
+        finite("delta", delta)?;
+        let (sc, curve) = self.sphere(radius)?;
+        Ok(
+            curve.contact_radius(delta / sc.interference, nd_path(path, sc.interference))?
+                * sc.radius,
+        )
     }
     /// For lambda <= lambda_c the stable branch passes the junction of the non-contact
     /// and contact branches, where the curvature of F(delta) changes; absent above

@@ -529,6 +529,32 @@ impl MdCurve {
         Ok(Contact::at(l, u.exp()).point(true))
     }
 
+    /// Contact radius A on a path at interference `delta`, nondimensional (eq 7): the
+    /// stable point's A where the sphere is attached as [`Self::force`] reads the path
+    /// rule, 0 where it is detached or on the non-contact (Kim) branch, whose cohesive
+    /// zone pulls without touching.
+    pub fn contact_radius(&self, delta: f64, path: Path) -> Result<f64, MkError> {
+        if delta.is_nan() {
+            return Err(CoreError::Invalid {
+                field: "delta",
+                value: delta,
+                allowed: "a number",
+            }
+            .into());
+        }
+        let d_in = self.jump_in_delta();
+        let attached = delta >= d_in
+            || match path {
+                Path::Approach => false,
+                Path::Retract { from } => from >= d_in && delta >= self.turning_point()?.delta,
+            };
+        Ok(if attached {
+            self.stable_point(delta)?.a
+        } else {
+            0.0
+        })
+    }
+
     /// Force on a path at interference `delta`, all nondimensional; `Path::Retract { from }`
     /// gives the largest interference of the excursion.
     ///

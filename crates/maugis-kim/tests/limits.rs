@@ -267,3 +267,48 @@ fn nan_inputs_are_errors_not_zero_forces() {
     assert!(mk.force(4e-6, f64::NAN, Path::Approach).is_err());
     assert!(mk.force(f64::NAN, 1e-9, Path::Approach).is_err());
 }
+
+/// JKR's contact radius at zero load is a0 = (6 pi w R^2 / K)^(1/3) (Johnson, Kendall &
+/// Roberts 1971; Maugis 2000 eq 5.112 in K = 4/3 E*), reached at the interference
+/// delta0 = a0^2 / (3R) (nondimensionally A = 6^(1/3), Delta = A^2 - (2/3) sqrt(6 A) =
+/// 6^(2/3)/3); Maugis-Kim at large lambda approaches it, and at small lambda its contact
+/// radius approaches Hertz's sqrt(R delta). The contact radius of a detached sphere is 0.
+#[test]
+fn contact_radii_meet_their_limits() {
+    let k = ru_on_rigid_k();
+    let (w, r) = (paper::WORK_OF_ADHESION, paper::RADIUS);
+    let jkr = Jkr::new(maugis_kim::JkrParams {
+        k,
+        work_of_adhesion: w,
+    })
+    .unwrap();
+    let a0 = (6.0 * PI * w * r * r / k).cbrt();
+    let delta0 = a0 * a0 / (3.0 * r);
+    let a = jkr.contact_radius(r, delta0, Path::Approach).unwrap();
+    assert!((a / a0 - 1.0).abs() < 1e-12, "JKR a0: {a} vs {a0}");
+    assert!(jkr.force(r, delta0, Path::Approach).unwrap().abs() < 1e-12 * k * r * r);
+    // detached on approach below contact
+    assert_eq!(jkr.contact_radius(r, -1e-9, Path::Approach).unwrap(), 0.0);
+    // Maugis-Kim: a short range (large lambda) approaches JKR's radius at the same delta
+    let mk = |z0: f64| {
+        MaugisKim::new(DugdaleParams {
+            k,
+            work_of_adhesion: w,
+            z0,
+        })
+        .unwrap()
+    };
+    let a_mk = mk(1e-13).contact_radius(r, delta0, Path::Approach).unwrap();
+    assert!(
+        (a_mk / a0 - 1.0).abs() < 0.01,
+        "MK large lambda {a_mk} vs JKR {a0}"
+    );
+    // a long range (small lambda): Hertz's geometry in contact
+    let delta = 2e-9;
+    let a_dmt = mk(5e-8).contact_radius(r, delta, Path::Approach).unwrap();
+    let hertz = (r * delta).sqrt();
+    assert!(
+        (a_dmt / hertz - 1.0).abs() < 0.05,
+        "MK small lambda {a_dmt} vs Hertz {hertz}"
+    );
+}

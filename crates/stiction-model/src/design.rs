@@ -20,7 +20,8 @@ use crate::spec::{Drive, SwitchSpec};
 use crate::switch::{SwitchModel, SwitchResult};
 use crate::{Progress, Silent};
 pub use design_sweep::{
-    DesignPoint, Grid, Labels, Map, MapRequest, PointError, Shard, Threshold, ThresholdOptions,
+    DesignPoint, Grid, Labels, Map, MapRequest, PointError, Quantity, Requirement, Shard,
+    Threshold, ThresholdOptions,
 };
 use std::collections::BTreeMap;
 use std::sync::Mutex;
@@ -55,7 +56,48 @@ pub fn design_scene(scene: &Scene, accuracy: Option<Accuracy>) -> Result<Scene, 
     if let Some(a) = accuracy {
         s.set("accuracy", toml::Value::String(a.as_str().into()))?;
     }
+    // the contact state of the last cycle only (the map columns and requirements read it),
+    // none when the scene says none
+    if s.get("contact_state").and_then(|v| v.as_str()) != Some("none") {
+        s.set("contact_state", toml::Value::String("last_cycle".into()))?;
+    }
     Ok(s)
+}
+
+/// Parses `--require` and checks that the scene computes its quantity: a contact
+/// resistance needs the films' conduction (`contact.resistivity`, `contact.mean_free_path`)
+/// and `switch.electrode_area`; both quantities need `contact_state` other than `none`.
+/// Errors name the argument `require`.
+pub fn requirement(text: &str, base: &SwitchSpec) -> Result<Requirement, ModelError> {
+    let r = Requirement::parse(text)
+        .map_err(|e| ModelError::argument("require", text, e.to_string()))?;
+    if base.contact_states == crate::spec::ContactStates::None {
+        return Err(ModelError::argument(
+            "require",
+            text,
+            "a scene that computes the contact state: it sets contact_state = \"none\" (remove it, or set \"last_cycle\")",
+        ));
+    }
+    if r.quantity == Quantity::ContactResistance {
+        let mut missing = Vec::new();
+        if base.contact.conduction.is_none() {
+            missing.push("contact.resistivity and contact.mean_free_path in [contact]");
+        }
+        if base.switch.electrode_area.is_none() {
+            missing.push("switch.electrode_area in [switch]");
+        }
+        if !missing.is_empty() {
+            return Err(ModelError::argument(
+                "require",
+                text,
+                format!(
+                    "a scene with the films' conduction and the electrode area for a contact resistance: give {}",
+                    missing.join(" and ")
+                ),
+            ));
+        }
+    }
+    Ok(r)
 }
 
 impl<'a> Evaluator<'a> {
@@ -176,6 +218,8 @@ pub fn design_point(r: &SwitchResult) -> DesignPoint {
     if !r.closes {
         return DesignPoint::does_not_close(r.restoring_pressure);
     }
+    // the closed switch under the hold voltage after the last cycle
+    let hold = r.cycles.last().and_then(|c| c.hold.as_ref());
     DesignPoint {
         pull_out_ratio: r.pull_out_ratio,
         largest_pull_out_pa: r.largest_pull_out,
@@ -190,6 +234,8 @@ pub fn design_point(r: &SwitchResult) -> DesignPoint {
             Some(_) => Some(design_sweep::AccommodationCause::Saturated),
             None => None,
         },
+        contact_resistance: hold.and_then(|h| h.contact_resistance),
+        real_contact_fraction: hold.map(|h| h.real_contact_fraction),
     }
 }
 
@@ -360,7 +406,23 @@ pub fn threshold(
     to: f64,
     accuracy: Option<Accuracy>,
 ) -> Result<ThresholdResult, ModelError> {
+    threshold_with(scene, registry, field, from, to, accuracy, None)
+}
+
+/// [`threshold`] with a second requirement `require` (`contact_resistance<1`, see
+/// [`requirement`]): its crossings along the field and the window where the switch is
+/// both free of stiction and meets it ([`design_sweep::threshold_with`]).
+pub fn threshold_with(
+    scene: &Scene,
+    registry: &LawRegistry,
+    field: &str,
+    from: f64,
+    to: f64,
+    accuracy: Option<Accuracy>,
+    require: Option<&str>,
+) -> Result<ThresholdResult, ModelError> {
     let (base, spec) = base_spec(scene, registry, accuracy)?;
+    let require = require.map(|t| requirement(t, &spec)).transpose()?;
     let f = check_field(field, &spec)?;
     for (name, v) in [("from", from), ("to", to)] {
         if !f.domain.contains(v) {
@@ -378,7 +440,14 @@ pub fn threshold(
         scan_points: None,
     };
     let ev = Evaluator::new(base, registry);
-    let t = design_sweep::threshold(f.key, from, to, |x| ev.point(&[(f.key, x)]), &options)?;
+    let t = design_sweep::threshold_with(
+        f.key,
+        from,
+        to,
+        |x| ev.point(&[(f.key, x)]),
+        &options,
+        require.as_ref(),
+    )?;
     let warnings = ev.warnings(t.evaluations);
     Ok(ThresholdResult {
         validity: Validity::of(&warnings),
@@ -413,7 +482,21 @@ pub fn map_request(
     shard: Option<&str>,
     accuracy: Option<Accuracy>,
 ) -> Result<(Scene, MapRequest), ModelError> {
+    map_request_with(scene, registry, vary, shard, accuracy, None).map(|(s, r, _)| (s, r))
+}
+
+/// [`map_request`] with a second requirement `require` (checked against the scene, see
+/// [`requirement`]), returned parsed for [`Map::with_requirement`].
+pub fn map_request_with(
+    scene: &Scene,
+    registry: &LawRegistry,
+    vary: &[String],
+    shard: Option<&str>,
+    accuracy: Option<Accuracy>,
+    require: Option<&str>,
+) -> Result<(Scene, MapRequest, Option<Requirement>), ModelError> {
     let (base, spec) = base_spec(scene, registry, accuracy)?;
+    let require = require.map(|t| requirement(t, &spec)).transpose()?;
     let grid = Grid::parse(vary)?;
     for a in grid.axes() {
         check_field(&a.field, &spec)?;
@@ -427,6 +510,7 @@ pub fn map_request(
             accuracy: spec.common.accuracy.as_str().into(),
             shard,
         },
+        require,
     ))
 }
 
@@ -440,7 +524,22 @@ pub fn map(
     accuracy: Option<Accuracy>,
     progress: &dyn Progress,
 ) -> Result<MapResult, ModelError> {
-    let (base, request) = map_request(scene, registry, vary, shard, accuracy)?;
+    map_with(scene, registry, vary, shard, accuracy, None, progress)
+}
+
+/// [`map`] with a second requirement `require` (`contact_resistance<1`): the map marks
+/// the points free of stiction that meet it (the design window).
+pub fn map_with(
+    scene: &Scene,
+    registry: &LawRegistry,
+    vary: &[String],
+    shard: Option<&str>,
+    accuracy: Option<Accuracy>,
+    require: Option<&str>,
+    progress: &dyn Progress,
+) -> Result<MapResult, ModelError> {
+    let (base, request, require) =
+        map_request_with(scene, registry, vary, shard, accuracy, require)?;
     let ev = Evaluator::new(base, registry);
     let total = match request.shard {
         Some(s) => s.indices(request.grid.len()).count(),
@@ -460,6 +559,7 @@ pub fn map(
         },
     );
     progress.finish();
+    let map = map.with_requirement(require);
     let warnings = ev.warnings(map.points().len());
     Ok(MapResult {
         validity: Validity::of(&warnings),

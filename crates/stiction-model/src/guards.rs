@@ -34,6 +34,10 @@ pub mod code {
     pub const ABOVE_STRENGTH: &str = "pull_out_above_interface_strength";
     /// An impact that stopped shallower than an earlier one.
     pub const NON_DEEPENING: &str = "non_deepening_impact";
+    /// The hold voltage presses the contact deeper than the impact did.
+    pub const HOLD_DEEPER_THAN_IMPACT: &str = "hold_deeper_than_impact";
+    /// A real contact fraction at which the asperities' spots merge.
+    pub const DENSE_CONTACT_SPOTS: &str = "dense_contact_spots";
 }
 
 /// A physics guard raised by a run: the model is used where it leaves its ground.

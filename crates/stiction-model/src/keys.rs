@@ -262,6 +262,8 @@ pub const RELOADS: &[&str] = &["as_printed", "bounded"];
 pub const COUNTERS: &[&str] = &["rigid", "same", "material"];
 /// The accuracy modes.
 pub const ACCURACIES: &[&str] = &["accurate", "balanced", "fast", "reference"];
+/// When the contact state of a switch is computed.
+pub const CONTACT_STATES: &[&str] = &["every_cycle", "last_cycle", "none"];
 /// The scene kinds, as the optional `kind` key names them.
 pub const KINDS: &[&str] = &["asperity", "surface", "switch"];
 
@@ -280,6 +282,8 @@ pub const KEYS: &[Key] = &[
     Key { key: "contact.counter_youngs_modulus", unit: "Pa", domain: Domain::range(1e6, 1e13), default: Default::RequiredWhen("counter = \"material\""), help: "counter-surface E, required with counter = \"material\"", scenes: ALL },
     Key { key: "contact.counter_poisson_ratio", unit: "-", domain: POISSON, default: Default::RequiredWhen("counter = \"material\""), help: "counter-surface nu, required with counter = \"material\"", scenes: ALL },
     Key { key: "contact.counter_yield_stress", unit: "Pa", domain: Domain::RangeOrInfinite { lo: 1e3 }, default: Default::Number(f64::INFINITY), help: "counter-surface S_Y, with counter = \"material\"; the body that yields first (smaller delta_CP) governs plasticity", scenes: ALL },
+    Key { key: "contact.resistivity", unit: "ohm m", domain: Domain::range(1e-9, 1e-3), default: Default::Absent, help: "resistivity rho of the films, for the contact resistance (absent: none computed); Au 2.2e-8, Ru 7.1e-8 (bulk, 295 K; thin films run higher)", scenes: SWITCH },
+    Key { key: "contact.mean_free_path", unit: "m", domain: Domain::range(1e-11, 1e-6), default: Default::RequiredWhen("resistivity"), help: "electron mean free path lambda of the films (Sharvin-Holm interpolation; needed with resistivity); Au 37.7e-9, Ru 6.6e-9 (Gall 2016)", scenes: SWITCH },
     Key { key: "contact.adhesion_law", unit: "", domain: Domain::Law, default: Default::Word("maugis_kim"), help: "adhesion law of one asperity (built in: maugis_kim, jkr, dmt, hertz); its own parameters in [contact.adhesion]", scenes: ALL },
     Key { key: "contact.plasticity_law", unit: "", domain: Domain::Law, default: Default::Word("etsion_kadin"), help: "plasticity law of one asperity (built in: etsion_kadin, kogut_etsion, elastic); its own parameters in [contact.plasticity]", scenes: ALL },
     Key { key: "contact.yield_modulus", unit: "", domain: Domain::Choice(YIELD_MODULI), default: Default::Required, help: "the modulus of eq 1 (required): \"as_printed\" uses the film's E as the paper prints it (its scenes); \"composite\" uses the pair's E* (Kogut-Etsion). About 100x on the paper switch's pull-out", scenes: ALL },
@@ -297,6 +301,7 @@ pub const KEYS: &[Key] = &[
     Key { key: "cycles", unit: "-", domain: Domain::Count { lo: 1, hi: 1000 }, default: Default::Count(10), help: "impact cycles (the cap with until_accommodated)", scenes: SWITCH },
     Key { key: "until_accommodated", unit: "", domain: Domain::Flag, default: Default::Flag(false), help: "stop once accommodated", scenes: SWITCH },
     Key { key: "accommodation_tolerance", unit: "-", domain: Domain::above(0.0, 0.1), default: Default::Number(1e-3), help: "relative change of pull-out (and of d_e in sigma_s) below which the next cycle counts as accommodated", scenes: SWITCH },
+    Key { key: "contact_state", unit: "", domain: Domain::Choice(CONTACT_STATES), default: Default::Word("every_cycle"), help: "when the contact state (rest under the hold voltage, real contact area, spots, contact resistance) is computed: every_cycle, last_cycle (design points) or none", scenes: SWITCH },
     Key { key: "elastic_comparison", unit: "", domain: Domain::Flag, default: Default::Flag(true), help: "also run the surface with elastic asperities (one cycle)", scenes: SWITCH },
     Key { key: "switch.d0", unit: "m", domain: Domain::range(1e-9, 1e-3), default: Default::Required, help: "initial air gap d0", scenes: SWITCH },
     Key { key: "switch.t_d", unit: "m", domain: Domain::range(1e-10, 1e-3), default: Default::Required, help: "dielectric thickness t_d", scenes: SWITCH },
@@ -309,6 +314,8 @@ pub const KEYS: &[Key] = &[
     Key { key: "switch.voltage", unit: "V", domain: Domain::above(0.0, 1e5), default: Default::Absent, help: "with k_s: the step voltage U (default V_PI); below the dynamic pull-in the switch does not close", scenes: SWITCH },
     Key { key: "switch.spring_constant", unit: "N/m", domain: Domain::above(0.0, 1e6), default: Default::Absent, help: "drive B as a spring constant: K_s = spring_constant / electrode_area (instead of k_s; give electrode_area)", scenes: SWITCH },
     Key { key: "switch.electrode_area", unit: "m^2", domain: Domain::range(1e-14, 1e-2), default: Default::Absent, help: "area of the movable electrode (needed with spring_constant, and for forces and contact resistances)", scenes: SWITCH },
+    Key { key: "switch.hold_voltage", unit: "V", domain: Domain::range(0.0, 1e5), default: Default::Absent, help: "voltage that holds the switch shut after each impact (default: the actuation voltage U); the rest separation balances its electrostatic pressure minus the spring", scenes: SWITCH },
+    Key { key: "switch.hold_force", unit: "N", domain: Domain::above(0.0, 10.0), default: Default::Absent, help: "force holding the closed switch on its contacts (instead of hold_voltage; needs electrode_area): for a dimpled switch whose electrode stays apart, e.g. from an FE model; the hold pressure per contact area is hold_force / (phi electrode_area)", scenes: SWITCH },
     Key { key: "switch.contact_area_fraction", unit: "-", domain: Domain::above(0.0, 1.0), default: Default::Number(1.0), help: "fraction phi of the electrode area that meets the substrate (contact dimples): it absorbs E_I/phi per contact area and adheres on phi of the area", scenes: SWITCH },
 ];
 

@@ -48,6 +48,7 @@ pub mod keys;
 pub mod law;
 pub mod laws;
 pub mod md;
+pub mod ohmic;
 pub mod scene;
 pub mod scenegen;
 pub mod spec;

@@ -105,6 +105,8 @@ pub struct ContactSpec {
     pub yield_modulus: YieldModulus,
     /// The reload rule.
     pub reload: Reload,
+    /// The films' conduction (resistivity, mean free path), if given.
+    pub conduction: Option<crate::ohmic::Conduction>,
     /// The adhesion law.
     pub adhesion: Chosen<DynAdhesion>,
     /// The plasticity law.
@@ -193,6 +195,33 @@ pub struct SwitchGeometrySpec {
     pub electrode_area: Option<f64>,
     /// The spring constant (N/m), if the drive was given that way (K_s = k / area).
     pub spring_constant: Option<f64>,
+    /// The voltage holding the switch shut (V), if given (default: the actuation voltage).
+    pub hold_voltage: Option<f64>,
+    /// The force holding the switch shut on its contacts (N), if given instead.
+    pub hold_force: Option<f64>,
+}
+
+/// When a switch run computes the contact state (rest, area, spots, resistance).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ContactStates {
+    /// After every cycle.
+    EveryCycle,
+    /// After the last cycle only (design points).
+    LastCycle,
+    /// Never.
+    None,
+}
+
+impl ContactStates {
+    /// The scene word: `every_cycle`, `last_cycle` or `none`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ContactStates::EveryCycle => "every_cycle",
+            ContactStates::LastCycle => "last_cycle",
+            ContactStates::None => "none",
+        }
+    }
 }
 
 /// What every validated scene carries: its source, title and accuracy mode.
@@ -262,6 +291,8 @@ pub struct SwitchSpec {
     pub accommodation_tolerance: f64,
     /// Run the elastic comparison.
     pub elastic_comparison: bool,
+    /// When the contact state is computed.
+    pub contact_states: ContactStates,
 }
 
 /// Any validated scene.
@@ -413,6 +444,11 @@ impl SwitchSpec {
         let until_accommodated = r.flag("until_accommodated")?;
         let accommodation_tolerance = r.number("accommodation_tolerance")?;
         let elastic_comparison = r.flag("elastic_comparison")?;
+        let contact_states = match r.required_word("contact_state")?.as_str() {
+            "last_cycle" => ContactStates::LastCycle,
+            "none" => ContactStates::None,
+            _ => ContactStates::EveryCycle,
+        };
         let common = r.common(0)?;
         // every cycle writes its curves and the whole result is held for rendering: bound
         // it up front rather than fail on memory after the computation
@@ -442,6 +478,7 @@ impl SwitchSpec {
             until_accommodated,
             accommodation_tolerance,
             elastic_comparison,
+            contact_states,
         })
     }
 }
@@ -743,6 +780,8 @@ impl<'a> Reader<'a> {
             .opt_number("switch.film_youngs_modulus")?
             .unwrap_or(film_modulus);
         let contact_area_fraction = self.number("switch.contact_area_fraction")?;
+        let hold_voltage = self.opt_number("switch.hold_voltage")?;
+        let hold_force = self.opt_number("switch.hold_force")?;
         let energy = self.opt_number("switch.impact_energy")?;
         let mut k_s = self.opt_number("switch.k_s")?;
         let voltage = self.opt_number("switch.voltage")?;
@@ -815,6 +854,29 @@ impl<'a> Reader<'a> {
                 })
             }
         };
+        if let Some(f) = hold_force {
+            if let Some(u) = hold_voltage {
+                return Err(self.fail(
+                    "switch.hold_force",
+                    num(f),
+                    format!(
+                        "absent when hold_voltage = {} V is given (two holds): give one of the two",
+                        num(u)
+                    ),
+                ));
+            }
+            if electrode_area.is_none() {
+                return Err(SceneError::Missing {
+                    file: self.file(),
+                    key: "switch.electrode_area".into(),
+                    explanation: format!(
+                        "hold_force = {} N needs the area it acts on: the hold pressure per contact area is hold_force / (contact_area_fraction x electrode_area)",
+                        num(f)
+                    ),
+                }
+                .into());
+            }
+        }
         Ok(SwitchGeometrySpec {
             d0,
             t_d,
@@ -826,6 +888,8 @@ impl<'a> Reader<'a> {
             contact_area_fraction,
             electrode_area,
             spring_constant,
+            hold_voltage,
+            hold_force,
         })
     }
 
@@ -890,6 +954,38 @@ impl<'a> Reader<'a> {
                     explanation: "the modulus of the yield onset, eq 1, moves the paper switch's pull-out by about 100x, so a scene must say which it uses: \"as_printed\" (E of the film, as the paper prints eq 1; its scenes use this and it reproduces Fig 4's changing curves) or \"composite\" (E* of the pair, the Kogut-Etsion convention that makes eq 3 the Hertz force at delta_CP); see docs/theory.md section 2.1".into(),
                 }
                 .into())
+            }
+        };
+        // the films' conduction: keys of switch scenes only (the contact resistance)
+        let resistivity = if self.kind == Kind::Switch {
+            self.opt_number("contact.resistivity")?
+        } else {
+            None
+        };
+        let conduction = match resistivity {
+            Some(rho) => {
+                let lambda = self
+                    .opt_number("contact.mean_free_path")?
+                    .ok_or_else(|| SceneError::Missing {
+                        file: self.file(),
+                        key: "contact.mean_free_path".into(),
+                        explanation: format!(
+                            "resistivity = {} ohm m is given: the contact resistance needs the films' electron mean free path too (m; Au 37.7e-9, Ru 6.6e-9)",
+                            num(rho)
+                        ),
+                    })?;
+                Some(crate::ohmic::Conduction {
+                    resistivity: rho,
+                    mean_free_path: lambda,
+                })
+            }
+            None => {
+                // a mean free path alone is checked and echoed, and computes nothing (a
+                // scene that comments out its resistivity turns the resistance off)
+                if self.kind == Kind::Switch {
+                    self.opt_number("contact.mean_free_path")?;
+                }
+                None
             }
         };
         let reload = match self.required_word("contact.reload")?.as_str() {
@@ -1008,6 +1104,7 @@ impl<'a> Reader<'a> {
             counter,
             yield_modulus,
             reload,
+            conduction,
             adhesion,
             plasticity,
             pair,

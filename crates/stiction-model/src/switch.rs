@@ -19,7 +19,7 @@ use crate::accuracy::{Accuracy, Targets};
 use crate::error::{ModelError, SceneError};
 use crate::guards::{self, Validity, Warning};
 use crate::keys::{self, num};
-use crate::spec::{Drive, RoughSurface, SwitchSpec};
+use crate::spec::{ContactStates, Drive, RoughSurface, SwitchSpec};
 use crate::Progress;
 use contact_core::{Path, SurfaceLaw};
 use gw_surface::{GreenwoodWilliamson, GwHistory, Roughness};
@@ -196,6 +196,65 @@ pub struct CycleResult {
     /// The adhesive well sampled on its own, with the pull-out point (empty with
     /// points = 0).
     pub well: Vec<PressurePoint>,
+    /// Where the closed switch rests under the hold voltage after this impact, and its
+    /// contact there (null when it opens or the state was not computed: `hold_status`).
+    pub hold: Option<ContactState>,
+    /// `rests` (on the unloading branch), `deeper_than_impact` (the hold presses further
+    /// than the impact did), `opens` (the spring outweighs the hold and the contact's
+    /// pull-out: no rest) or `not_computed` (`contact_state`).
+    pub hold_status: &'static str,
+    /// The contact at the end of impact, d_e (null when not computed).
+    pub end_of_impact: Option<ContactState>,
+}
+
+impl CycleResult {
+    /// Whether a contact resistance was computed for this cycle (hold or end of impact).
+    pub fn has_resistance(&self) -> bool {
+        self.hold
+            .iter()
+            .chain(self.end_of_impact.iter())
+            .any(|s| s.contact_resistance.is_some())
+    }
+}
+
+/// The contact of the closed switch at one state of a cycle (the rest under the hold
+/// voltage, or the end of impact): the real contact area, the spots and the contact
+/// resistance, from the history-aware integrals of the surface
+/// ([`gw_surface::GreenwoodWilliamson::contact_spots`]; theory 6.5).
+#[derive(Debug, Clone, Serialize)]
+pub struct ContactState {
+    /// Separation of the mean plane of asperity heights from the counter-surface (m).
+    pub separation: f64,
+    /// Contact pressure there (Pa per contact area, compressive > 0).
+    pub contact_pressure: f64,
+    /// Real contact area over the contact area, A_r/(phi A) (-).
+    pub real_contact_fraction: f64,
+    /// Contacting asperities per unit contact area (1/m^2).
+    pub spot_density: f64,
+    /// Their mean contact radius (m; 0 without spots).
+    pub mean_spot_radius: f64,
+    /// Spots on the contact area phi x `electrode_area` (absent without `electrode_area`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spots: Option<f64>,
+    /// Contact resistance (ohm): the constriction resistances of the spots in parallel
+    /// over the contact area phi x `electrode_area`, each spot Wexler's interpolation of
+    /// Holm and Sharvin; null without `contact.resistivity`, without `electrode_area` or
+    /// without spots.
+    pub contact_resistance: Option<f64>,
+    /// Greenwood's interaction term of the spots scattered over the contact area as one
+    /// circle of radius alpha, 16 rho / (3 pi^2 alpha) (ohm; absent when the resistance is).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interaction_resistance: Option<f64>,
+    /// `contact_resistance` plus `interaction_resistance` (ohm): Greenwood's resistance of
+    /// the spots of one apparent contact (absent when the resistance is).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_resistance_with_interaction: Option<f64>,
+    /// Knudsen number of the mean spot, lambda / a (-; above 1 the spots conduct
+    /// ballistically; absent without conduction).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub knudsen_number: Option<f64>,
+    /// The largest relative error estimate of the contact integrals (-).
+    pub relative_error: f64,
 }
 
 /// The elastic comparison: the same surface with asperities that never yield, one cycle.
@@ -279,6 +338,16 @@ pub struct SwitchResult {
     pub restoring_pressure: f64,
     /// Fraction of the electrode in contact.
     pub contact_area_fraction: f64,
+    /// The voltage holding the switch shut after each impact (V; 0 with `hold_force`).
+    pub hold_voltage: f64,
+    /// The force holding it shut on its contacts (N), when the scene gives it instead.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hold_force: Option<f64>,
+    /// The pressure the hold puts on the contact: (eps0 eps_r^2 U_hold^2 / (2 t_d^2) -
+    /// K_s d0) / phi (Pa per contact area; negative when the spring outweighs it).
+    pub hold_pressure: f64,
+    /// When the contact states were computed: `every_cycle`, `last_cycle` or `none`.
+    pub contact_state: &'static str,
     /// Whether the electrode reaches contact.
     pub closes: bool,
     /// What the scene gave and what was derived.
@@ -413,9 +482,133 @@ impl<'a> SwitchModel<'a> {
         let last = run.cycles.last().expect("at least one cycle");
         result.extrapolated_fraction = guards::fit_range_max(&s.contact)
             .map_or(0.0, |hi| gw.fraction_beyond(&last.history, hi));
+        let states = self.contact_states(&gw, &run)?;
         record(&mut result, run, impact);
+        for (cy, (hold, status, end)) in result.cycles.iter_mut().zip(states) {
+            cy.hold = hold;
+            cy.hold_status = status;
+            cy.end_of_impact = end;
+        }
+        result.warnings.extend(contact_warnings(&result));
         result.validity = Validity::of(&result.warnings);
         Ok(result)
+    }
+
+    /// The voltage holding the switch shut (V): `switch.hold_voltage`, by default the
+    /// actuation voltage.
+    pub fn hold_voltage(&self) -> f64 {
+        if self.spec.switch.hold_force.is_some() {
+            return 0.0;
+        }
+        self.spec.switch.hold_voltage.unwrap_or(self.es.voltage)
+    }
+
+    /// The hold's pressure on the contact (Pa per contact area): the closed electrostatic
+    /// pressure of the hold voltage minus the spring's K_s d0, over phi (theory 6.5); or,
+    /// given `switch.hold_force`, that force over phi x electrode_area.
+    pub fn hold_pressure(&self) -> f64 {
+        let g = &self.spec.switch;
+        if let (Some(f), Some(a)) = (g.hold_force, g.electrode_area) {
+            return f / (g.contact_area_fraction * a);
+        }
+        let gap = g.t_d / g.epsilon_r;
+        let u = self.hold_voltage();
+        let electrostatic = 0.5 * g.epsilon_0 * u * u / (gap * gap);
+        (electrostatic - self.es.restoring_pressure) / g.contact_area_fraction
+    }
+
+    /// The contact at a separation `d` with `history` on `path`.
+    pub fn contact_state(
+        &self,
+        gw: &RoughSurface,
+        history: &GwHistory,
+        d: f64,
+        path: Path,
+    ) -> Result<ContactState, ModelError> {
+        let s = self.spec;
+        let conduction = s.contact.conduction;
+        let g = conduction.map(|c| move |a: f64| c.spot_conductance(a));
+        let spots = gw.contact_spots(
+            d,
+            history,
+            path,
+            g.as_ref().map(|g| g as &(dyn Fn(f64) -> f64 + Sync)),
+        )?;
+        let pressure = gw.pressure(d, history, path)?;
+        let area = s
+            .switch
+            .electrode_area
+            .map(|a| a * s.switch.contact_area_fraction);
+        let resistance = match (conduction, area, spots.conductance_per_area) {
+            (Some(_), Some(area), Some(g)) if g > 0.0 => Some(1.0 / (g * area)),
+            _ => None,
+        };
+        let interaction = match (conduction, area, resistance) {
+            (Some(c), Some(a), Some(_)) => Some(c.interaction_resistance(a)),
+            _ => None,
+        };
+        Ok(ContactState {
+            separation: d,
+            contact_pressure: pressure,
+            real_contact_fraction: spots.real_contact_fraction,
+            spot_density: spots.spot_density,
+            mean_spot_radius: spots.mean_spot_radius,
+            spots: area.map(|a| spots.spot_density * a),
+            contact_resistance: resistance,
+            interaction_resistance: interaction,
+            contact_resistance_with_interaction: resistance.zip(interaction).map(|(r, i)| r + i),
+            knudsen_number: match conduction {
+                Some(c) if spots.mean_spot_radius > 0.0 => {
+                    Some(c.mean_free_path / spots.mean_spot_radius)
+                }
+                _ => None,
+            },
+            relative_error: spots.relative_error,
+        })
+    }
+
+    /// The hold and end-of-impact states of the cycles `contact_state` asks for.
+    #[allow(clippy::type_complexity)]
+    fn contact_states(
+        &self,
+        gw: &RoughSurface,
+        run: &CycleRun<GwHistory>,
+    ) -> Result<Vec<(Option<ContactState>, &'static str, Option<ContactState>)>, ModelError> {
+        let n = run.cycles.len();
+        let wanted: Vec<usize> = match self.spec.contact_states {
+            ContactStates::EveryCycle => (0..n).collect(),
+            ContactStates::LastCycle => vec![n - 1],
+            ContactStates::None => Vec::new(),
+        };
+        let hold = self.hold_pressure();
+        let precision = self.spec.common.accuracy.precision();
+        let computed = contact_core::par::map(&wanted, |&i| {
+            let cy = &run.cycles[i];
+            let d_e = cy.d_e();
+            let retract = Path::Retract { from: d_e };
+            let end = self.contact_state(gw, &cy.history, d_e, retract)?;
+            let rest = switch_1d::rest(
+                gw,
+                &cy.history,
+                d_e,
+                cy.unloading.pull_out_separation,
+                hold,
+                precision,
+            )?;
+            let at = match rest {
+                switch_1d::Rest::At(d) => Some(self.contact_state(gw, &cy.history, d, retract)?),
+                switch_1d::Rest::Deeper(d) => {
+                    Some(self.contact_state(gw, &cy.history, d, Path::Approach)?)
+                }
+                _ => None,
+            };
+            Ok::<_, ModelError>((i, at, rest.as_str(), end))
+        })?;
+        let mut out: Vec<_> = (0..n).map(|_| (None, "not_computed", None)).collect();
+        for (i, at, status, end) in computed {
+            out[i] = (at, status, Some(end));
+        }
+        Ok(out)
     }
 
     /// The result of a scene before any cycle: the laws, the drive, the targets.
@@ -439,6 +632,10 @@ impl<'a> SwitchModel<'a> {
             impact_energy: es.impact_energy,
             restoring_pressure: es.restoring_pressure,
             contact_area_fraction: s.switch.contact_area_fraction,
+            hold_voltage: self.hold_voltage(),
+            hold_force: s.switch.hold_force,
+            hold_pressure: self.hold_pressure(),
+            contact_state: s.contact_states.as_str(),
             closes: es.closes,
             drive: es.drive.clone(),
             accommodation_tolerance: s.accommodation_tolerance,
@@ -623,6 +820,9 @@ fn record(result: &mut SwitchResult, run: CycleRun<GwHistory>, impact: Impact) {
             sticks: cy.sticks,
             unloading: cy.unloading.curve.clone(),
             well: cy.unloading.well.clone(),
+            hold: None,
+            hold_status: "not_computed",
+            end_of_impact: None,
         })
         .collect();
     result.loading = run.loading;
@@ -632,4 +832,57 @@ fn record(result: &mut SwitchResult, run: CycleRun<GwHistory>, impact: Impact) {
     result.pull_out_ratio = run.pull_out_ratio;
     result.first_sticking_cycle = run.first_sticking_cycle;
     result.stiction = run.stiction;
+}
+
+/// The largest real contact fraction up to which the spots of independent asperities
+/// (Greenwood-Williamson) are read as separate spots without a note (theory 6.5).
+pub const SPARSE_CONTACT_FRACTION: f64 = 0.2;
+
+/// The guards of the contact states: `hold_deeper_than_impact` (a hold that presses the
+/// contact further than its impact did; the cycles do not carry that extra loading into
+/// the next impact) and `dense_contact_spots` (a real contact fraction above
+/// [`SPARSE_CONTACT_FRACTION`]: the asperities' spots would merge, which GW's independent
+/// asperities ignore; above 1 the area is impossible and the result leaves the model).
+fn contact_warnings(result: &SwitchResult) -> Vec<Warning> {
+    let mut out = Vec::new();
+    let deeper: Vec<usize> = result
+        .cycles
+        .iter()
+        .filter(|c| c.hold_status == "deeper_than_impact")
+        .map(|c| c.cycle)
+        .collect();
+    if let Some(&first) = deeper.first() {
+        out.push(Warning::note(
+            guards::code::HOLD_DEEPER_THAN_IMPACT,
+            format!(
+                "the hold pressure {} per contact area exceeds the contact pressure at the end of impact in {} cycle(s) (first: cycle {first}): the hold presses the surface deeper than the impact did, and the cycles do not carry that extra loading into the next impact (the paper's model loads only by impacts); lower the hold or read the hold state of those cycles as a lower bound of the flattening",
+                guards::si(result.hold_pressure, "Pa", 4),
+                deeper.len()
+            ),
+        ));
+    }
+    let densest = result
+        .cycles
+        .iter()
+        .flat_map(|c| {
+            [
+                ("under the hold", c.cycle, c.hold.as_ref()),
+                ("at the end of impact", c.cycle, c.end_of_impact.as_ref()),
+            ]
+        })
+        .filter_map(|(at, cy, st)| st.map(|st| (at, cy, st.real_contact_fraction)))
+        .max_by(|a, b| a.2.total_cmp(&b.2));
+    if let Some((at, cycle, f)) = densest.filter(|d| d.2 > SPARSE_CONTACT_FRACTION) {
+        let message = format!(
+            "the real contact area reaches {:.3} of the contact area ({at}, cycle {cycle}): Greenwood-Williamson asperities are independent, so their spots are counted as separate although at this density they merge{}; the area, spot count and resistance are estimates there",
+            f,
+            if f > 1.0 { " (above 1: an impossible area)" } else { "" }
+        );
+        out.push(if f > 1.0 {
+            Warning::invalid(guards::code::DENSE_CONTACT_SPOTS, message)
+        } else {
+            Warning::note(guards::code::DENSE_CONTACT_SPOTS, message)
+        });
+    }
+    out
 }

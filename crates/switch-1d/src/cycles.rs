@@ -498,6 +498,109 @@ pub fn unload<S: SurfaceLaw>(
     })
 }
 
+/// Where the closed switch rests after an impact under a hold pressure.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[non_exhaustive]
+pub enum Rest {
+    /// At this separation (m), on the unloading branch from d_e, where the contact
+    /// pressure balances the hold pressure.
+    At(f64),
+    /// At this separation (m) below d_e: the hold pressure exceeds the contact pressure at
+    /// the end of impact, so the hold loads the surface further, on the approach branch of
+    /// the impact's history, until the contact pushes back as hard.
+    Deeper(f64),
+    /// The hold pressure pulls harder than the contact's pull-out can hold: no rest, the
+    /// switch opens.
+    Opens,
+}
+
+impl Rest {
+    /// The rest separation (m), if the switch rests.
+    pub fn separation(self) -> Option<f64> {
+        match self {
+            Rest::At(d) | Rest::Deeper(d) => Some(d),
+            Rest::Opens => None,
+        }
+    }
+
+    /// `rests`, `deeper_than_impact` or `opens`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Rest::At(_) => "rests",
+            Rest::Deeper(_) => "deeper_than_impact",
+            Rest::Opens => "opens",
+        }
+    }
+}
+
+/// The rest of a closed switch after an impact to `d_e` (`history` loaded to it) under the
+/// hold pressure `hold` (Pa per contact area, compressive > 0; negative when the spring
+/// outweighs the electrostatic hold and only adhesion keeps the switch shut).
+///
+/// When p(d_e) >= hold the rest is the smallest separation d >= d_e on the unloading
+/// branch where the contact pressure equals `hold`: the unloading pressure falls from
+/// p(d_e) to the pull-out minimum at `pull_out_separation`, so the root lies on that
+/// falling part (stable: opening lowers the contact's push); when the pull-out minimum
+/// still exceeds `hold` the switch opens. When p(d_e) < hold the hold presses further: the
+/// rest lies below d_e on the approach branch with the impact's history. Found to 1e-12
+/// of the roughness scale (`precision` is kept for callers and future use).
+pub fn rest<S: SurfaceLaw>(
+    surface: &S,
+    history: &S::History,
+    d_e: f64,
+    pull_out_separation: f64,
+    hold: f64,
+    precision: Precision,
+) -> Result<Rest, SwitchError> {
+    let scale = surface.length_scales(history)?.roughness;
+    // Brent converges superlinearly: a rest far tighter than the mode's d_e tolerance costs
+    // a few pressures more and keeps p(rest) = hold to the pressure's own precision even
+    // where the unloading curve is steep (a small hold on a stiff contact)
+    let _ = precision;
+    let tolerance = Tolerance::absolute(1e-12 * scale).with_max_iter(200);
+    let retract = Path::Retract { from: d_e };
+    let g =
+        |d: f64| -> Result<f64, SwitchError> { Ok(surface.pressure(d, history, retract)? - hold) };
+    let top = Sample { x: d_e, f: g(d_e)? };
+    if top.f == 0.0 {
+        return Ok(Rest::At(d_e));
+    }
+    if top.f < 0.0 {
+        let approach = |d: f64| -> Result<f64, SwitchError> {
+            Ok(surface.pressure(d, history, Path::Approach)? - hold)
+        };
+        let deepest = surface.length_scales(history)?.deepest.min(d_e);
+        let Some((a, b)) = contact_core::numeric::expand_bracket(
+            "rest of the closed switch below the end of impact",
+            approach,
+            Sample { x: d_e, f: top.f },
+            d_e - 0.05 * scale,
+            contact_core::numeric::Expansion::Geometric(2.0),
+            deepest,
+        )?
+        else {
+            return Err(SwitchError::HoldNotBorne { hold, deepest });
+        };
+        let d = brent_from(
+            "rest of the closed switch below the end of impact",
+            approach,
+            a,
+            b,
+            tolerance,
+        )?;
+        return Ok(Rest::Deeper(d));
+    }
+    let end = pull_out_separation.max(d_e);
+    let bottom = Sample { x: end, f: g(end)? };
+    if bottom.f > 0.0 {
+        return Ok(Rest::Opens);
+    }
+    let d = brent_from("rest of the closed switch", g, top, bottom, tolerance)?;
+    Ok(Rest::At(d))
+}
+
 /// What an impact brings to the contact, and what the spring opposes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]

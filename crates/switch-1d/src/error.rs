@@ -18,6 +18,15 @@ pub enum SwitchError {
         /// The energy absorbed there (J/m^2).
         absorbed: f64,
     },
+    /// The hold pressure exceeds what the contact can bear down to the deepest separation
+    /// its law is meant for.
+    #[error("the hold pressure {hold:e} Pa per contact area exceeds the contact pressure down to separation {deepest:e} m, the deepest the surface law is meant for: no rest of the closed switch")]
+    HoldNotBorne {
+        /// The hold pressure (Pa per contact area).
+        hold: f64,
+        /// The deepest separation searched (m).
+        deepest: f64,
+    },
     /// The surface law failed.
     #[error("surface law: {0}")]
     Surface(#[from] LawError),
@@ -30,7 +39,9 @@ impl Categorized for SwitchError {
         match self {
             SwitchError::Core(c) => c.category(),
             SwitchError::Surface(e) => e.category(),
-            SwitchError::EnergyNotAbsorbed { .. } => Category::Numerical,
+            SwitchError::EnergyNotAbsorbed { .. } | SwitchError::HoldNotBorne { .. } => {
+                Category::Numerical
+            }
         }
     }
 }

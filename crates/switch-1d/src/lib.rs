@@ -33,8 +33,9 @@ mod error;
 mod switch;
 
 pub use cycles::{
-    end_of_impact, eq17_residual, pull_out_grid, run_cycles, unload, AccommodationCause, Cycle,
-    CycleOptions, CycleRun, EndOfImpact, Impact, ImpactFilm, Precision, PressurePoint, Unloading,
+    end_of_impact, eq17_residual, pull_out_grid, rest, run_cycles, unload, AccommodationCause,
+    Cycle, CycleOptions, CycleRun, EndOfImpact, Impact, ImpactFilm, Precision, PressurePoint, Rest,
+    Unloading,
 };
 pub use error::SwitchError;
 pub use switch::{Switch, SwitchGeometry, EPSILON_0};

@@ -129,6 +129,17 @@ impl Switch {
     pub fn restoring_pressure(&self, k_s: f64) -> f64 {
         k_s * self.g.d0
     }
+
+    /// Electrostatic pressure (Pa, per electrode area) of the closed switch at voltage `u`
+    /// (V): the air gap closed, the dielectric alone between the electrodes,
+    /// p = eps0 eps_r^2 U^2 / (2 t_d^2) (the parallel-plate pressure eps0 U^2 / (2 g^2) at
+    /// g = t_d/eps_r, the same idealisation as the impact energy's, which counts the travel
+    /// to a closed gap; the nanometres the surfaces stay apart are neglected against
+    /// t_d/eps_r).
+    pub fn closed_electrostatic_pressure(&self, u: f64) -> f64 {
+        let g = self.g.t_d / self.g.epsilon_r;
+        0.5 * self.g.epsilon_0 * u * u / (g * g)
+    }
 }
 
 #[cfg(test)]

@@ -15,6 +15,8 @@ pub fn point(ratio: f64, restoring: f64) -> DesignPoint {
         closes: true,
         validity_holds: true,
         accommodation_cause: None,
+        contact_resistance: None,
+        real_contact_fraction: None,
     }
 }
 
