@@ -15,6 +15,12 @@
 //!   map of an unsharded run, byte for byte.
 //! * [`threshold`]: scan, then Brent-Dekker refinement of every crossing of ratio = 1,
 //!   with its uncertainty; [`threshold_table`] and [`map_table`] render text tables.
+//! * [`run_probability`]: Monte Carlo over distributions of fields ([`Scatter`], `FIELD=DIST`,
+//!   optionally [`Correlation`]s), each sample's values from `(seed, index)` alone; the
+//!   probability of stiction by cycle, after accommodation and of "does not close" with
+//!   Clopper-Pearson intervals ([`stats`]), rank correlations, shards and
+//!   [`merge_probability`]; [`exact_single_field`] gives the exact answer of one monotone
+//!   field from its threshold and CDF.
 //!
 //! ```
 //! use design_sweep::{run_map, threshold, DesignPoint, Grid, Labels, MapRequest,
@@ -45,12 +51,15 @@
 //! ```
 
 mod boundary;
+mod dist;
 mod error;
 mod grid;
 mod map;
 mod plot;
 mod point;
+mod probability;
 mod shard;
+pub mod stats;
 mod table;
 mod threshold;
 
@@ -63,7 +72,14 @@ pub use map::{
     merge, run_map, Map, MapPoint, MapRequest, MapSummary, CSV_COLUMNS, MAP_FORMAT, MAP_VERSION,
     MAX_MAP_BYTES,
 };
+pub use dist::{Correlation, Dist, DistSpec, Sampler, Scatter, DISTRIBUTIONS};
 pub use point::{AccommodationCause, DesignPoint, PointError, Status};
+pub use probability::{
+    exact_range, exact_single_field, merge_probability, run_probability, CycleProbability,
+    Counts, Estimate, Exact, ExactBoundary, Outcome, Probability, ProbabilityPlan,
+    RankCorrelation, SamplePoint, Stopping, Summary, EXACT_TAIL, MAX_SAMPLES,
+    PROBABILITY_FORMAT, PROBABILITY_VERSION, SAMPLE_COLUMNS, STOP_CHECK_EVERY,
+};
 pub use shard::Shard;
 pub use table::{map_table, threshold_table};
 pub use threshold::{
