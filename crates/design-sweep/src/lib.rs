@@ -76,7 +76,7 @@ pub use dist::{Correlation, Dist, DistSpec, Sampler, Scatter, DISTRIBUTIONS};
 pub use point::{AccommodationCause, DesignPoint, PointError, Status};
 pub use probability::{
     exact_range, exact_single_field, merge_probability, run_probability, CycleProbability,
-    Counts, Estimate, Exact, ExactBoundary, Outcome, Probability, ProbabilityPlan,
+    Counts, Estimate, Exact, ExactBoundary, Outcome, Probability, ProbabilityPlan, ProbabilityView,
     RankCorrelation, SamplePoint, Stopping, Summary, EXACT_TAIL, MAX_SAMPLES,
     PROBABILITY_FORMAT, PROBABILITY_VERSION, SAMPLE_COLUMNS, STOP_CHECK_EVERY,
 };

@@ -850,7 +850,20 @@ impl Probability {
     }
 
     fn json(&self, points: bool) -> String {
-        let out = ProbabilityOut {
+        let mut s = serde_json::to_string_pretty(&self.view(points))
+            .expect("a probability run always serialises");
+        s.push('\n');
+        s
+    }
+
+    /// The run as JSON records: with the samples (`probability.json`) or without them (the
+    /// summary `--format json` prints). `Probability` itself serialises with them.
+    pub fn view(&self, points: bool) -> ProbabilityView<'_> {
+        ProbabilityView { run: self, points }
+    }
+
+    fn out(&self, points: bool) -> ProbabilityOut<'_> {
+        ProbabilityOut {
             format: PROBABILITY_FORMAT,
             version: PROBABILITY_VERSION,
             summary: &self.summary,
@@ -882,10 +895,7 @@ impl Probability {
                     })
                     .collect()
             }),
-        };
-        let mut s = serde_json::to_string_pretty(&out).expect("a probability run always serialises");
-        s.push('\n');
-        s
+        }
     }
 
     /// `samples.csv`: `index`, a column per scattered field (named as the field), then
@@ -1193,6 +1203,26 @@ where
 }
 
 // ------------------------------------------------------------ JSON records
+
+/// A probability run serialised with or without its samples ([`Probability::view`]).
+#[derive(Debug, Clone, Copy)]
+pub struct ProbabilityView<'a> {
+    run: &'a Probability,
+    points: bool,
+}
+
+impl Serialize for ProbabilityView<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.run.out(self.points).serialize(s)
+    }
+}
+
+impl Serialize for Probability {
+    /// `probability.json`'s records, samples included.
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.out(true).serialize(s)
+    }
+}
 
 #[derive(Serialize)]
 struct ProbabilityOut<'a> {

@@ -201,13 +201,22 @@ pub fn variable_fields() -> impl Iterator<Item = &'static Key> {
 /// key of a switch scene, and not in conflict with the scene's drive or counter-surface.
 /// The error (argument `vary`) says what to give.
 pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, ModelError> {
+    check_field_as(field, base, "vary")
+}
+
+/// [`check_field`] for a field given by the argument `argument` (`vary`, `scatter`).
+pub fn check_field_as(
+    field: &str,
+    base: &SwitchSpec,
+    argument: &str,
+) -> Result<&'static Key, ModelError> {
     let list = || {
         variable_fields()
             .map(|f| f.key)
             .collect::<Vec<_>>()
             .join(", ")
     };
-    let fail = |why: String| Err(ModelError::argument("vary", field, why));
+    let fail = |why: String| Err(ModelError::argument(argument, field, why));
     let Some(f) = keys::key(field).filter(|f| variable(f)) else {
         let why = match keys::key(field) {
             Some(f) if !f.key.contains('.') => format!(
@@ -294,7 +303,7 @@ pub fn root_tolerance(accuracy: Accuracy) -> f64 {
 
 /// The base of a design question: the scene with the design settings, validated once
 /// (so that a scene error is reported against the scene file).
-fn base_spec(
+pub(crate) fn base_spec(
     scene: &Scene,
     registry: &LawRegistry,
     accuracy: Option<Accuracy>,
