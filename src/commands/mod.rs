@@ -8,6 +8,7 @@ pub mod design;
 pub mod law;
 pub mod md;
 pub mod print;
+pub mod probability;
 pub mod surface;
 pub mod switch;
 
@@ -111,6 +112,12 @@ pub fn argument_error(e: ModelError) -> Error {
         }
         ModelError::Design(DesignError::Shard { option, reason }) => {
             Error::usage("--shard", format!("`{option}`: {reason}"))
+        }
+        ModelError::Design(DesignError::Scatter { option, reason }) => {
+            Error::usage("--scatter", format!("`{option}`: {reason}"))
+        }
+        ModelError::Design(DesignError::Correlation { option, reason }) => {
+            Error::usage("--correlate", format!("`{option}`: {reason}"))
         }
         ModelError::Argument {
             name,

@@ -168,9 +168,9 @@ impl Dist {
         }
         let mut v = [0.0; 2];
         for (k, a) in args.iter().enumerate() {
-            v[k] = a.parse::<f64>().map_err(|_| {
-                bad(&format!("{} `{a}` is not a number", params[k]))
-            })?;
+            v[k] = a
+                .parse::<f64>()
+                .map_err(|_| bad(&format!("{} `{a}` is not a number", params[k])))?;
         }
         let spec = match name.as_str() {
             "normal" => DistSpec::Normal {
@@ -243,7 +243,11 @@ impl Dist {
         } else {
             self.cdf(lo)
         };
-        let above = if hi == f64::INFINITY { 0.0 } else { self.sf(hi) };
+        let above = if hi == f64::INFINITY {
+            0.0
+        } else {
+            self.sf(hi)
+        };
         below + above
     }
 
@@ -304,9 +308,11 @@ impl Scatter {
             option: option.to_owned(),
             reason,
         };
-        let (field, dist) = option
-            .split_once('=')
-            .ok_or_else(|| err(format!("expected FIELD=DIST with DIST one of {DISTRIBUTIONS}")))?;
+        let (field, dist) = option.split_once('=').ok_or_else(|| {
+            err(format!(
+                "expected FIELD=DIST with DIST one of {DISTRIBUTIONS}"
+            ))
+        })?;
         let field = field.trim();
         check_field(field).map_err(err)?;
         let dist = Dist::parse(dist).map_err(|e| err(format!("{field}: {e}")))?;
@@ -344,9 +350,9 @@ impl Correlation {
             option: option.to_owned(),
             reason,
         };
-        let (pair, rho) = option
-            .split_once('=')
-            .ok_or_else(|| err("expected A,B=RHO (two scattered fields and a correlation in (-1, 1))".into()))?;
+        let (pair, rho) = option.split_once('=').ok_or_else(|| {
+            err("expected A,B=RHO (two scattered fields and a correlation in (-1, 1))".into())
+        })?;
         let (a, b) = pair
             .split_once(',')
             .ok_or_else(|| err("expected A,B=RHO: two fields separated by a comma".into()))?;
@@ -421,8 +427,10 @@ impl Sampler {
             }
         }
         let pos = |c: &Correlation, f: &str| {
-            scatter.iter().position(|s| s.field == f).ok_or_else(|| {
-                DesignError::Correlation {
+            scatter
+                .iter()
+                .position(|s| s.field == f)
+                .ok_or_else(|| DesignError::Correlation {
                     option: c.to_string(),
                     reason: format!(
                         "{f} is not a scattered field (give it a --scatter first; scattered: {})",
@@ -432,8 +440,7 @@ impl Sampler {
                             .collect::<Vec<_>>()
                             .join(", ")
                     ),
-                }
-            })
+                })
         };
         let mut c = vec![vec![0.0; k]; k];
         for (j, row) in c.iter_mut().enumerate() {
@@ -562,7 +569,9 @@ mod tests {
             assert_eq!(Dist::parse(&d.to_string()).unwrap(), d);
         }
         assert_eq!(
-            Dist::parse(" LogNormal( 2e-9 , 1.5 ) ").unwrap().to_string(),
+            Dist::parse(" LogNormal( 2e-9 , 1.5 ) ")
+                .unwrap()
+                .to_string(),
             "lognormal(2e-9,1.5)"
         );
         for (t, frag) in [
@@ -597,17 +606,21 @@ mod tests {
                 let x = d.quantile(p);
                 assert!((d.cdf(x) - p).abs() < 1e-9 * p.max(1e-3), "{t} {p}");
                 let y = d.from_normal_score(std.inverse_cdf(p));
-                assert!((y - x).abs() <= 1e-9 * x.abs().max(1.0), "{t} {p}: {y} vs {x}");
+                assert!(
+                    (y - x).abs() <= 1e-9 * x.abs().max(1.0),
+                    "{t} {p}: {y} vs {x}"
+                );
             }
         }
         let ln = Dist::parse("lognormal(2,1.5)").unwrap();
         assert!((ln.quantile(0.5) - 2.0).abs() < 1e-12);
-        assert!((ln.cdf(3.0) - std.cdf(1.0)).abs() < 1e-12, "factor = exp(sigma)");
+        assert!(
+            (ln.cdf(3.0) - std.cdf(1.0)).abs() < 1e-12,
+            "factor = exp(sigma)"
+        );
         let w = Dist::parse("weibull(2,3)").unwrap();
         assert!((w.cdf(2.0) - (1.0 - (-1.0f64).exp())).abs() < 1e-14);
-        assert!(
-            (w.mass_outside(1.0, f64::INFINITY) - (1.0 - (-0.125f64).exp())).abs() < 1e-14
-        );
+        assert!((w.mass_outside(1.0, f64::INFINITY) - (1.0 - (-0.125f64).exp())).abs() < 1e-14);
     }
 
     #[test]
@@ -674,7 +687,10 @@ mod tests {
         .unwrap_err();
         assert!(bad.to_string().contains("not positive definite"), "{bad}");
         let e = Sampler::new(&s, &[Correlation::parse("a.x,b.q=0.1").unwrap()], 1).unwrap_err();
-        assert!(e.to_string().contains("b.q is not a scattered field"), "{e}");
+        assert!(
+            e.to_string().contains("b.q is not a scattered field"),
+            "{e}"
+        );
         assert!(Correlation::parse("a.x,a.y=1").is_err());
         assert!(Correlation::parse("a.x,a.x=0.5").is_err());
     }

@@ -66,19 +66,19 @@ mod threshold;
 use std::collections::BTreeMap;
 
 pub use boundary::BoundaryPoint;
+pub use dist::{Correlation, Dist, DistSpec, Sampler, Scatter, DISTRIBUTIONS};
 pub use error::DesignError;
 pub use grid::{Axis, Grid, Spacing, MAX_AXIS_POINTS, MAX_GRID_POINTS};
 pub use map::{
     merge, run_map, Map, MapPoint, MapRequest, MapSummary, CSV_COLUMNS, MAP_FORMAT, MAP_VERSION,
     MAX_MAP_BYTES,
 };
-pub use dist::{Correlation, Dist, DistSpec, Sampler, Scatter, DISTRIBUTIONS};
 pub use point::{AccommodationCause, DesignPoint, PointError, Status};
 pub use probability::{
-    exact_range, exact_single_field, merge_probability, run_probability, CycleProbability,
-    Counts, Estimate, Exact, ExactBoundary, Outcome, Probability, ProbabilityPlan, ProbabilityView,
-    RankCorrelation, SamplePoint, Stopping, Summary, EXACT_TAIL, MAX_SAMPLES,
-    PROBABILITY_FORMAT, PROBABILITY_VERSION, SAMPLE_COLUMNS, STOP_CHECK_EVERY,
+    exact_range, exact_single_field, merge_probability, run_probability, Counts, CycleProbability,
+    Estimate, Exact, ExactBoundary, Outcome, Probability, ProbabilityPlan, ProbabilityView,
+    RankCorrelation, SamplePoint, Stopping, Summary, EXACT_TAIL, MAX_SAMPLES, PROBABILITY_FORMAT,
+    PROBABILITY_VERSION, SAMPLE_COLUMNS, STOP_CHECK_EVERY,
 };
 pub use shard::Shard;
 pub use table::{map_table, threshold_table};

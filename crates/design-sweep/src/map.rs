@@ -435,10 +435,7 @@ impl Map {
 /// checked: a known status, a detail exactly with `out_of_domain` and `failed`, the values
 /// present matching the status, and the design point consistent
 /// ([`DesignPoint::check`]). The error names the point index and the key.
-pub(crate) fn point_design(
-    i: usize,
-    p: &PointIn,
-) -> Result<(Status, Option<DesignPoint>), String> {
+pub(crate) fn point_design(i: usize, p: &PointIn) -> Result<(Status, Option<DesignPoint>), String> {
     let status = Status::from_parts(&p.status, p.detail.clone())
         .ok_or_else(|| format!("point {i}: unknown status `{}`", p.status))?;
     // a detail exactly where the writer puts one: with out_of_domain and failed

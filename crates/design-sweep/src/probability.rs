@@ -649,10 +649,15 @@ where
             ),
         );
     }
-    if t.crossings.iter().any(|c| c.kind == CrossingKind::Unresolved)
+    if t.crossings
+        .iter()
+        .any(|c| c.kind == CrossingKind::Unresolved)
         || t.closure_boundaries.iter().any(|b| b.detail.is_some())
     {
-        return unavailable(e, "a boundary could not be located (a point failed while it was refined)".into());
+        return unavailable(
+            e,
+            "a boundary could not be located (a point failed while it was refined)".into(),
+        );
     }
     // the state along the scan: 0 free, 1 sticks, 2 does not close
     let state = |p: &crate::threshold::ScanPoint| match (p.closes, p.pull_out_ratio) {
@@ -669,10 +674,15 @@ where
         if a == b {
             continue;
         }
-        let kind = if a != 2 && b != 2 { "stiction" } else { "closure" };
-        let found = e.boundaries.iter().position(|x| {
-            x.kind == kind && x.value >= w[0].value && x.value <= w[1].value
-        });
+        let kind = if a != 2 && b != 2 {
+            "stiction"
+        } else {
+            "closure"
+        };
+        let found = e
+            .boundaries
+            .iter()
+            .position(|x| x.kind == kind && x.value >= w[0].value && x.value <= w[1].value);
         let Some(k) = found else {
             return unavailable(
                 e,
@@ -789,8 +799,7 @@ where
                     .iter()
                     .filter(|p| p.outcome() == Outcome::Sticks)
                     .count();
-                if clopper_pearson(x, n, plan.confidence).is_some_and(|(l, u)| 0.5 * (u - l) <= h)
-                {
+                if clopper_pearson(x, n, plan.confidence).is_some_and(|(l, u)| 0.5 * (u - l) <= h) {
                     break;
                 }
             }
@@ -962,8 +971,8 @@ impl Probability {
     /// inside the plan (and its shard), with exactly the values the seed gives them, each
     /// consistent ([`DesignPoint::check`]). The statistics are recomputed from the points.
     pub fn from_json(text: &str) -> Result<Probability, DesignError> {
-        let m: ProbabilityIn = serde_json::from_str(text)
-            .map_err(|e| DesignError::ProbabilityJson(e.to_string()))?;
+        let m: ProbabilityIn =
+            serde_json::from_str(text).map_err(|e| DesignError::ProbabilityJson(e.to_string()))?;
         let bad = |m: String| DesignError::ProbabilityJson(m);
         if m.format != PROBABILITY_FORMAT || m.version != PROBABILITY_VERSION {
             return Err(bad(format!(
@@ -1031,9 +1040,7 @@ impl Probability {
                 .keys()
                 .find(|k| !plan.scatter.iter().any(|s| &s.field == *k))
             {
-                return Err(bad(format!(
-                    "point {i}: values.{k}: not a scattered field"
-                )));
+                return Err(bad(format!("point {i}: values.{k}: not a scattered field")));
             }
             let (status, design) = point_design(i, &p).map_err(bad)?;
             points.push(SamplePoint {
@@ -1092,7 +1099,10 @@ where
         if s.n != n {
             return Err(refuse(
                 label,
-                format!("is part {s} (of {} parts) but {first_label} is one of {n} parts", s.n),
+                format!(
+                    "is part {s} (of {} parts) but {first_label} is one of {n} parts",
+                    s.n
+                ),
             ));
         }
         let (a, b) = (&first.plan, &p.plan);
@@ -1106,7 +1116,10 @@ where
             ));
         }
         let differs = |what: &str, x: String, y: String| {
-            refuse(label, format!("{what} `{y}` differs from {first_label}'s `{x}`"))
+            refuse(
+                label,
+                format!("{what} `{y}` differs from {first_label}'s `{x}`"),
+            )
         };
         let list = |v: &[String]| v.join(" ");
         let texts = |p: &ProbabilityPlan| {
@@ -1146,7 +1159,11 @@ where
             ));
         }
         if a.cycles != b.cycles {
-            return Err(differs("cycles", a.cycles.to_string(), b.cycles.to_string()));
+            return Err(differs(
+                "cycles",
+                a.cycles.to_string(),
+                b.cycles.to_string(),
+            ));
         }
         if p.exact != first.exact {
             return Err(refuse(

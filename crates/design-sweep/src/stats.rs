@@ -29,7 +29,9 @@ pub fn clopper_pearson(successes: usize, trials: usize, confidence: f64) -> Opti
     let upper = if successes == trials {
         1.0
     } else {
-        Beta::new(x + 1.0, n - x).ok()?.inverse_cdf(1.0 - alpha / 2.0)
+        Beta::new(x + 1.0, n - x)
+            .ok()?
+            .inverse_cdf(1.0 - alpha / 2.0)
     };
     Some((lower.clamp(0.0, 1.0), upper.clamp(0.0, 1.0)))
 }
@@ -102,7 +104,10 @@ mod tests {
         assert!((hi - 0.3085).abs() < 5e-5);
         // x = 5 of 10: [0.1871, 0.8129] (symmetric)
         let (lo, hi) = clopper_pearson(5, 10, 0.95).unwrap();
-        assert!((lo - 0.187086).abs() < 1e-6 && (hi - 0.812914).abs() < 1e-6, "{lo} {hi}");
+        assert!(
+            (lo - 0.187086).abs() < 1e-6 && (hi - 0.812914).abs() < 1e-6,
+            "{lo} {hi}"
+        );
         assert!((lo + hi - 1.0).abs() < 1e-12);
         // x = n mirrors x = 0
         let (lo, hi) = clopper_pearson(10, 10, 0.95).unwrap();
@@ -113,7 +118,10 @@ mod tests {
         assert!((hi / 5.558924e-3 - 1.0).abs() < 1e-5, "{hi}");
         // 30 of 100 at 90 %: [0.224923, 0.384221] (binomial tails summed exactly)
         let (lo, hi) = clopper_pearson(30, 100, 0.9).unwrap();
-        assert!((lo - 0.2249232).abs() < 1e-7 && (hi - 0.3842206).abs() < 1e-7, "{lo} {hi}");
+        assert!(
+            (lo - 0.2249232).abs() < 1e-7 && (hi - 0.3842206).abs() < 1e-7,
+            "{lo} {hi}"
+        );
         assert!(clopper_pearson(0, 0, 0.95).is_none());
         assert!(clopper_pearson(1, 1, 1.0).is_none());
         // large n stays accurate: the interval brackets x/n and narrows like 1/sqrt(n)
@@ -132,7 +140,9 @@ mod tests {
         assert_eq!(ranks(&[3.0, 1.0, 3.0, 2.0]), vec![3.5, 1.0, 3.5, 2.0]);
         assert_eq!(spearman(&x, &[1.0; 5]), None);
         // a textbook example: rho = 1 - 6 sum d^2 / (n (n^2 - 1)) without ties
-        let a = [106.0, 86.0, 100.0, 101.0, 99.0, 103.0, 97.0, 113.0, 112.0, 110.0];
+        let a = [
+            106.0, 86.0, 100.0, 101.0, 99.0, 103.0, 97.0, 113.0, 112.0, 110.0,
+        ];
         let b = [7.0, 0.0, 27.0, 50.0, 28.0, 29.0, 20.0, 12.0, 6.0, 17.0];
         assert!((spearman(&a, &b).unwrap() + 29.0 / 165.0).abs() < 1e-12);
         let (lo, hi) = spearman_interval(0.5, 103, 0.95).unwrap();

@@ -83,17 +83,28 @@ fn a_single_monotone_field_gives_the_cdf_at_the_critical_value_and_monte_carlo_a
     assert_eq!(sum.samples, 2000);
     assert_eq!(sum.denominator, 2000);
     let p = sum.stiction_probability.unwrap();
-    assert!(sum.ci_low <= p_exact && p_exact <= sum.ci_high, "{p_exact} not in [{}, {}]", sum.ci_low, sum.ci_high);
+    assert!(
+        sum.ci_low <= p_exact && p_exact <= sum.ci_high,
+        "{p_exact} not in [{}, {}]",
+        sum.ci_low,
+        sum.ci_high
+    );
     assert_eq!(sum.exact_inside_interval, Some(true));
     // the curve by cycle rises to the answer after accommodation
     assert_eq!(sum.by_cycle.len(), CYCLES);
-    assert!(sum.by_cycle.windows(2).all(|w| w[1].probability >= w[0].probability));
+    assert!(sum
+        .by_cycle
+        .windows(2)
+        .all(|w| w[1].probability >= w[0].probability));
     assert_eq!(sum.by_cycle[CYCLES - 1].probability, p);
     // cycle 1 sticks where ratio (1/2)/(1 - 2^-10) > 1: k < k0 sqrt(g1)
     let g1 = 0.5 / (1.0 - 0.5f64.powi(10));
     let p1 = sc.dist.cdf(k0 * g1.sqrt());
     let c1 = &sum.by_cycle[0];
-    assert!(c1.ci_low <= p1 && p1 <= c1.ci_high && c1.probability < p, "{c1:?} vs {p1}");
+    assert!(
+        c1.ci_low <= p1 && p1 <= c1.ci_high && c1.probability < p,
+        "{c1:?} vs {p1}"
+    );
     // the one field drives failure, against the ratio: rho = -1 (ratio decreasing in k)
     assert_eq!(sum.driver.as_deref(), Some("switch.k_s"));
     assert_eq!(sum.rank_correlation[0].spearman, Some(-1.0));
@@ -110,7 +121,10 @@ fn a_single_monotone_field_gives_the_cdf_at_the_critical_value_and_monte_carlo_a
         assert!(json.get(key).is_some(), "{key} missing");
     }
     assert_eq!(json["confidence"], 0.95);
-    assert!(json.get("points").is_none(), "the summary leaves the samples out");
+    assert!(
+        json.get("points").is_none(),
+        "the summary leaves the samples out"
+    );
     let c = &json["by_cycle"][0];
     for key in ["cycle", "probability", "ci_low", "ci_high"] {
         assert!(c.get(key).is_some(), "by_cycle.{key} missing");
@@ -142,7 +156,10 @@ fn a_closure_boundary_splits_the_mass_between_sticking_and_not_closing() {
     // Monte Carlo: the three outcomes partition the counted samples
     let r = run(plan(&["switch.k_s=uniform(2,10)"], 800, 5), |v| f(v[0].1));
     let s = r.summary();
-    assert_eq!(s.counts.sticks + s.counts.free + s.counts.does_not_close, 800);
+    assert_eq!(
+        s.counts.sticks + s.counts.free + s.counts.does_not_close,
+        800
+    );
     let (lo, hi) = (s.does_not_close.ci_low, s.does_not_close.ci_high);
     assert!(lo <= 0.25 && 0.25 <= hi, "[{lo}, {hi}]");
     assert!(s.ci_low <= 0.375 && 0.375 <= s.ci_high);
@@ -153,8 +170,13 @@ fn a_ratio_that_is_not_monotone_gives_no_exact_answer_and_says_why() {
     // sticks only inside (3, 6)
     let f = |k: f64| Ok::<_, PointError>(point(2.0 - ((k - 4.5) / 1.5).powi(2), 1.0).clamp_ratio());
     let sc = Scatter::parse("switch.k_s=uniform(1,9)").unwrap();
-    let e = exact_single_field(&sc, exact_range(&sc, 0.0, 1e20), f, &ThresholdOptions::default())
-        .unwrap();
+    let e = exact_single_field(
+        &sc,
+        exact_range(&sc, 0.0, 1e20),
+        f,
+        &ThresholdOptions::default(),
+    )
+    .unwrap();
     assert!(!e.available && !e.monotone);
     assert!(e.reason.unwrap().contains("not monotone"));
     assert!(e.stiction_probability.is_none());
@@ -174,11 +196,14 @@ impl Clamp for DesignPoint {
 #[test]
 fn the_interval_covers_the_true_probability_in_at_least_its_confidence_over_many_seeds() {
     // a device sticks when its field is below the 0.1 quantile: p = 0.1 exactly
-    let f = |v: &[(&str, f64)]| Ok::<_, PointError>(cycled(if v[0].1 < 0.1 { 2.0 } else { 0.5 }, 1.0));
+    let f =
+        |v: &[(&str, f64)]| Ok::<_, PointError>(cycled(if v[0].1 < 0.1 { 2.0 } else { 0.5 }, 1.0));
     for (n, runs) in [(60usize, 1000u64), (400, 1000)] {
         let mut covered = 0;
         for seed in 0..runs {
-            let s = run(plan(&["a.u=uniform(0,1)"], n, seed), f).summary().clone();
+            let s = run(plan(&["a.u=uniform(0,1)"], n, seed), f)
+                .summary()
+                .clone();
             if s.ci_low <= 0.1 && 0.1 <= s.ci_high {
                 covered += 1;
             }
@@ -201,7 +226,10 @@ fn the_interval_covers_the_true_probability_in_at_least_its_confidence_over_many
         }
     }
     eprintln!("target half-width 0.03: coverage {covered}/300");
-    assert!(covered as f64 / 300.0 >= 0.93, "sequential coverage {covered}/300");
+    assert!(
+        covered as f64 / 300.0 >= 0.93,
+        "sequential coverage {covered}/300"
+    );
 }
 
 /// A stand-in with every kind of sample: failures, refusals, outside validity, switches
@@ -229,7 +257,10 @@ fn mixed(v: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
 
 fn mixed_plan(samples: usize) -> ProbabilityPlan {
     let mut p = plan(
-        &["switch.k_s=uniform(1.5,10)", "contact.work_of_adhesion=lognormal(1,1.2)"],
+        &[
+            "switch.k_s=uniform(1.5,10)",
+            "contact.work_of_adhesion=lognormal(1,1.2)",
+        ],
         samples,
         42,
     );
@@ -249,13 +280,19 @@ fn samples_apart_stay_out_of_the_denominator() {
     );
     assert_eq!(s.denominator, c.sticks + c.free + c.does_not_close);
     assert_eq!(s.outside_validity, c.outside_validity);
-    assert_eq!(s.stiction_probability, Some(c.sticks as f64 / s.denominator as f64));
+    assert_eq!(
+        s.stiction_probability,
+        Some(c.sticks as f64 / s.denominator as f64)
+    );
     let (lo, hi) = stats::clopper_pearson(c.sticks, s.denominator, 0.95).unwrap();
     assert_eq!((s.ci_low, s.ci_high), (lo, hi));
     for p in r.points() {
         assert_eq!(
             p.counted(),
-            matches!(p.outcome(), Outcome::Sticks | Outcome::Free | Outcome::DoesNotClose)
+            matches!(
+                p.outcome(),
+                Outcome::Sticks | Outcome::Free | Outcome::DoesNotClose
+            )
         );
     }
     // the panic became a failed sample with its message
@@ -292,8 +329,8 @@ fn shards_merged_equal_one_run_bit_for_bit_and_read_back_exactly() {
     // a missing part, a repeated part, parts of another seed are refused by name
     let e = merge_probability(parts[..2].to_vec()).unwrap_err();
     assert!(e.to_string().contains("missing part(s) 1/3"), "{e}");
-    let e = merge_probability(vec![parts[0].clone(), parts[0].clone(), parts[1].clone()])
-        .unwrap_err();
+    let e =
+        merge_probability(vec![parts[0].clone(), parts[0].clone(), parts[1].clone()]).unwrap_err();
     assert!(e.to_string().contains("is also in"), "{e}");
     let mut other = mixed_plan(250);
     other.seed = 43;
@@ -301,7 +338,11 @@ fn shards_merged_equal_one_run_bit_for_bit_and_read_back_exactly() {
     let mut mixed_parts = parts[..2].to_vec();
     mixed_parts.push(("other".into(), run(other, mixed)));
     let e = merge_probability(mixed_parts).unwrap_err();
-    assert!(e.to_string().contains("cannot merge other: seed `43` differs"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("cannot merge other: seed `43` differs"),
+        "{e}"
+    );
     let e = merge_probability(vec![("whole".into(), whole.clone())]).unwrap_err();
     assert!(e.to_string().contains("unsharded"), "{e}");
     // a value that the seed does not give is refused
@@ -345,7 +386,10 @@ fn the_same_samples_on_any_thread_count_stopped_early_or_not() {
 #[test]
 fn bad_requests_are_refused_before_any_sample_runs() {
     let e = Scatter::parse("surface.sigma_s=normal(1e-9,0)").unwrap_err();
-    assert!(e.to_string().contains("surface.sigma_s") && e.to_string().contains("sd = 0"), "{e}");
+    assert!(
+        e.to_string().contains("surface.sigma_s") && e.to_string().contains("sd = 0"),
+        "{e}"
+    );
     let e = Scatter::parse("sigma_s=lognormal(1,2)").unwrap_err();
     assert!(e.to_string().contains("section.key"), "{e}");
     let e = Scatter::parse("surface.sigma_s").unwrap_err();

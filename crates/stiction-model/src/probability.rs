@@ -144,8 +144,16 @@ pub fn plan(
         let f = check_field_as(&s.field, &spec, "scatter")?;
         if let Some((lo, hi)) = f.domain.bounds() {
             let (below, above) = (
-                if lo == f64::NEG_INFINITY { 0.0 } else { s.dist.cdf(lo) },
-                if hi == f64::INFINITY { 0.0 } else { s.dist.sf(hi) },
+                if lo == f64::NEG_INFINITY {
+                    0.0
+                } else {
+                    s.dist.cdf(lo)
+                },
+                if hi == f64::INFINITY {
+                    0.0
+                } else {
+                    s.dist.sf(hi)
+                },
             );
             if below + above > MAX_OUTSIDE_MASS {
                 let mut parts = Vec::new();
@@ -290,12 +298,7 @@ pub fn run(
 /// over its quantiles [`EXACT_TAIL`] .. 1 - [`EXACT_TAIL`] (within its domain), in the
 /// plan's accuracy mode (root to a tenth of the mode's ratio error). A search that cannot
 /// run is an unavailable answer with the reason, never an error of the run.
-fn exact(
-    base: &Scene,
-    registry: &LawRegistry,
-    s: &Scatter,
-    accuracy: Option<Accuracy>,
-) -> Exact {
+fn exact(base: &Scene, registry: &LawRegistry, s: &Scatter, accuracy: Option<Accuracy>) -> Exact {
     let (lo, hi) = crate::keys::key(&s.field)
         .and_then(|k| k.domain.bounds())
         .unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
@@ -354,10 +357,19 @@ mod tests {
     #[test]
     fn a_distribution_with_mass_outside_the_domain_is_refused_naming_the_field() {
         let e = refused(&request(&["surface.sigma_s=normal(5e-9,5e-9)"]));
-        assert!(e.contains("surface.sigma_s") && e.contains("below 1e-11"), "{e}");
-        assert!(e.contains("never clipped") && e.contains("lognormal"), "{e}");
+        assert!(
+            e.contains("surface.sigma_s") && e.contains("below 1e-11"),
+            "{e}"
+        );
+        assert!(
+            e.contains("never clipped") && e.contains("lognormal"),
+            "{e}"
+        );
         let e = refused(&request(&["contact.poisson_ratio=uniform(0.2,0.6)"]));
-        assert!(e.contains("contact.poisson_ratio") && e.contains("above 5e-1"), "{e}");
+        assert!(
+            e.contains("contact.poisson_ratio") && e.contains("above 5e-1"),
+            "{e}"
+        );
         let e = refused(&request(&["contact.work_of_adhesion=normal(0.5,0.5)"]));
         assert!(e.contains("contact.work_of_adhesion"), "{e}");
         // a sliver far below the limit is accepted

@@ -39,7 +39,10 @@ fn a_scattered_spring_sticks_with_the_probability_of_the_cdf_at_the_critical_sti
             .install(|| run(&scene, &registry, &request, &Silent).unwrap())
     };
     let r = on(2);
-    let e = r.probability.exact().expect("a single field has an exact answer");
+    let e = r
+        .probability
+        .exact()
+        .expect("a single field has an exact answer");
     assert!(e.available && e.monotone, "{e:?}");
     assert_eq!(e.direction.as_deref(), Some("decreasing"));
     assert_eq!(e.free_side, "above");
