@@ -220,7 +220,7 @@ fn the_interval_covers_the_true_probability_in_at_least_its_confidence_over_many
         let r = run(p, f);
         let s = r.summary();
         assert!(s.stopping.target_met == Some(true) && s.ci_high - s.ci_low <= 0.06);
-        assert_eq!(s.samples % 100, 0);
+        assert!(s.samples.is_multiple_of(100));
         if s.ci_low <= 0.1 && 0.1 <= s.ci_high {
             covered += 1;
         }
@@ -374,7 +374,7 @@ fn the_same_samples_on_any_thread_count_stopped_early_or_not() {
     let v: serde_json::Value = serde_json::from_str(&a).unwrap();
     assert_eq!(v["stopping"]["rule"], "target_halfwidth");
     let n = v["samples"].as_u64().unwrap();
-    assert!(n < 3000 && n % 100 == 0, "{n}");
+    assert!(n < 3000 && n.is_multiple_of(100), "{n}");
     // a run stopped early holds exactly the first samples of the full run
     let full: serde_json::Value = serde_json::from_str(&on(2, None)).unwrap();
     assert_eq!(

@@ -158,25 +158,25 @@ pub fn plan(
             if below + above > MAX_OUTSIDE_MASS {
                 let mut parts = Vec::new();
                 if below > 0.0 {
-                    parts.push(format!("{} of its mass below {}", num(below), num(lo)));
+                    parts.push(format!("{below:.2e} of its mass below {}", num(lo)));
                 }
                 if above > 0.0 {
-                    parts.push(format!("{} above {}", num(above), num(hi)));
+                    parts.push(format!("{above:.2e} above {}", num(hi)));
                 }
                 return Err(ModelError::argument(
                     "scatter",
                     option,
                     format!(
-                        "a distribution inside the domain of {} ({}): {} puts {} (at most {} may lie outside; values are never clipped). Give {}a distribution that stays inside",
+                        "a distribution inside the domain of {} ({}): {} puts {} (at most {} may lie outside; values are never clipped). {}arrow the distribution",
                         f.key,
                         f.domain.describe(),
                         s.dist,
                         parts.join(" and "),
                         num(MAX_OUTSIDE_MASS),
                         if lo >= 0.0 {
-                            "a positive field lognormal(median,factor) or weibull(scale,shape), or "
+                            "For a positive field give lognormal(median,factor) or weibull(scale,shape), or n"
                         } else {
-                            ""
+                            "N"
                         }
                     ),
                 ));
