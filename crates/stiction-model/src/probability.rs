@@ -387,7 +387,10 @@ mod tests {
     #[test]
     fn unknown_fields_drive_conflicts_and_bad_settings_are_refused_before_running() {
         let e = refused(&request(&["surface.sigma=lognormal(1e-8,1.2)"]));
-        assert!(e.contains("invalid scatter = surface.sigma"), "{e}");
+        assert!(
+            e.contains("invalid scatter: unknown field `surface.sigma`"),
+            "{e}"
+        );
         // the paper's scene gives the impact energy: k_s cannot scatter
         let e = refused(&request(&["switch.k_s=lognormal(1e10,1.2)"]));
         assert!(e.contains("k_s = <Pa/m>"), "{e}");
