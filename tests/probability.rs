@@ -125,6 +125,50 @@ fn json_holds_the_contract_and_the_exact_answer_lies_in_the_interval() {
     assert_eq!(w["confidence"], 0.8);
     assert_eq!(w["stiction_probability"], v["stiction_probability"]);
     assert!(w["ci_high"].as_f64().unwrap() < hi && w.get("exact").is_none());
+    // --target-halfwidth stops at the first block of 100 samples narrow enough
+    let t = json(&stiction(&[
+        "design",
+        "probability",
+        "--scene",
+        &s,
+        "--scatter",
+        SPRING,
+        "--samples",
+        "300",
+        "--seed",
+        "5",
+        "--target-halfwidth",
+        "0.2",
+        "--no-exact",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(t["samples"], 100);
+    assert_eq!(t["samples_requested"], 300);
+    assert_eq!(t["stopping"]["rule"], "target_halfwidth");
+    assert_eq!(t["stopping"]["target_met"], true);
+    let half = 0.5 * (t["ci_high"].as_f64().unwrap() - t["ci_low"].as_f64().unwrap());
+    assert!(half <= 0.2 && t["stopping"]["halfwidth"].as_f64() == Some(half));
+}
+
+/// The polylines of an SVG with `points` points (the data lines, in drawing order), as
+/// (x, y) pixel pairs.
+fn data_lines(svg: &str, points: usize) -> Vec<Vec<(f64, f64)>> {
+    svg.split("<polyline")
+        .skip(1)
+        .filter_map(|p| {
+            let start = p.find("points=\"")? + "points=\"".len();
+            let list = &p[start..start + p[start..].find('"')?];
+            let xy: Vec<(f64, f64)> = list
+                .split_whitespace()
+                .map(|pair| {
+                    let (x, y) = pair.split_once(',').expect("x,y");
+                    (x.parse().unwrap(), y.parse().unwrap())
+                })
+                .collect();
+            (xy.len() == points).then_some(xy)
+        })
+        .collect()
 }
 
 /// erf by its series (|x| < 3 here), to check the CDF without a statistics crate.
@@ -204,6 +248,29 @@ fn shards_merged_equal_one_run_byte_for_byte_on_any_thread_count() {
     assert_eq!(csv.lines().count(), 13);
     let svg = std::fs::read_to_string(dir.join("whole/probability.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("P(stuck by cycle n)"));
+    // the curve and its band: three lines of one point per cycle, the 95 % ends either side
+    for name in [
+        "95 % lower (Clopper-Pearson)",
+        "95 % upper (Clopper-Pearson)",
+    ] {
+        assert!(svg.contains(name), "{name} not in the legend");
+    }
+    let lines = data_lines(&svg, 3);
+    assert_eq!(lines.len(), 3, "curve, lower and upper end");
+    let (curve, lower, upper) = (&lines[0], &lines[1], &lines[2]);
+    for n in 0..3 {
+        // SVG y grows downwards: the lower end is drawn at or below the curve
+        assert_eq!(curve[n].0, lower[n].0);
+        assert!(
+            lower[n].1 >= curve[n].1 && curve[n].1 >= upper[n].1,
+            "cycle {}",
+            n + 1
+        );
+    }
+    assert!(
+        upper.iter().zip(lower).any(|(u, l)| u.1 < l.1),
+        "a band of some width"
+    );
     // a missing part is named; a map folder and a probability folder do not merge
     fails(
         &stiction(&["design", "merge", &d("part1"), "--out", &d("half")]),

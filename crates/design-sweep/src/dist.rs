@@ -648,6 +648,53 @@ mod tests {
         }
     }
 
+    /// The values drawn follow each field's distribution: the Kolmogorov-Smirnov distance
+    /// between 20 000 draws and the CDF is below its 1 % critical value 1.63/sqrt(n), and the
+    /// empirical quantiles land on the distribution's (so nothing is clipped or truncated).
+    #[test]
+    fn drawn_values_follow_each_distribution() {
+        let s: Vec<Scatter> = [
+            "a.n=normal(3,2)",
+            "a.l=lognormal(7.78e-9,1.2)",
+            "a.u=uniform(-1,3)",
+            "a.w=weibull(2.5e8,12)",
+        ]
+        .iter()
+        .map(|t| Scatter::parse(t).unwrap())
+        .collect();
+        let sam = Sampler::new(&s, &[], 11).unwrap();
+        let n = 20_000;
+        let mut columns = vec![Vec::with_capacity(n); s.len()];
+        for i in 0..n {
+            for (c, v) in columns.iter_mut().zip(sam.values(i)) {
+                c.push(v);
+            }
+        }
+        let critical = 1.63 / (n as f64).sqrt();
+        for (sc, c) in s.iter().zip(columns.iter_mut()) {
+            c.sort_by(f64::total_cmp);
+            let d = c
+                .iter()
+                .enumerate()
+                .map(|(i, &x)| {
+                    let f = sc.dist.cdf(x);
+                    (f - i as f64 / n as f64).max((i + 1) as f64 / n as f64 - f)
+                })
+                .fold(0.0f64, f64::max);
+            assert!(d < critical, "{}: KS distance {d} >= {critical}", sc.field);
+            // the extremes stay where the distribution puts them
+            for p in [0.01, 0.5, 0.99] {
+                let q = c[(p * n as f64) as usize];
+                let f = sc.dist.cdf(q);
+                assert!(
+                    (f - p).abs() < 4.0 * (p * (1.0 - p) / n as f64).sqrt() + 1e-4,
+                    "{}: {p} {f}",
+                    sc.field
+                );
+            }
+        }
+    }
+
     #[test]
     fn correlated_normal_scores_have_the_requested_correlation() {
         let s = vec![
