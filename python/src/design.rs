@@ -47,7 +47,7 @@ pub fn design_threshold(
     Ok(out)
 }
 
-fn warnings_to_py<'py>(py: Python<'py>, w: &[Warning]) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn warnings_to_py<'py>(py: Python<'py>, w: &[Warning]) -> PyResult<Bound<'py, PyAny>> {
     let v: Vec<serde_json::Value> = w
         .iter()
         .map(|w| {

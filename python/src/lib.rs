@@ -14,6 +14,7 @@ mod design;
 mod errors;
 mod laws;
 mod pool;
+mod probability;
 mod run;
 mod scene;
 
@@ -42,6 +43,10 @@ fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(design::design_map_assemble, m)?)?;
     m.add_function(wrap_pyfunction!(design::design_merge, m)?)?;
     m.add_function(wrap_pyfunction!(design::read_map, m)?)?;
+    m.add_class::<probability::PyProbability>()?;
+    m.add_function(wrap_pyfunction!(probability::design_probability, m)?)?;
+    m.add_function(wrap_pyfunction!(probability::design_merge_probability, m)?)?;
+    m.add_function(wrap_pyfunction!(probability::read_probability, m)?)?;
     m.add_class::<contact_law::PyContactLaw>()?;
     m.add_function(wrap_pyfunction!(contact_law::tabulate_law, m)?)?;
     Ok(())

@@ -45,6 +45,8 @@ from ._results import (
     MapPoint,
     MdResult,
     ModelWarning,
+    ProbabilityResult,
+    ProbabilitySample,
     Record,
     SurfaceResult,
     SwitchResult,
@@ -72,6 +74,8 @@ __all__ = [
     "design_map",
     "design_merge",
     "read_map",
+    "design_probability",
+    "read_probability",
     "calibrate",
     "StictionError",
     "InputError",
@@ -87,6 +91,8 @@ __all__ = [
     "ThresholdResult",
     "DesignMap",
     "MapPoint",
+    "ProbabilityResult",
+    "ProbabilitySample",
     "LawResult",
     "LawEvaluation",
     "CalibrationResult",
@@ -227,9 +233,27 @@ def design_map(
     return _design_map(map_on_client(client, scene, vary_list, accuracy, shard, require))
 
 
-def design_merge(parts: Sequence[Union[DesignMap, PathLike]]) -> DesignMap:
+def design_merge(
+    parts: Sequence[Union[DesignMap, ProbabilityResult, PathLike]],
+) -> Union[DesignMap, ProbabilityResult]:
     """Joins the shards of one map (DesignMaps or paths of their map.json) into exactly
-    the map of an unsharded run, as ``stiction design merge``."""
+    the map of an unsharded run, or the shards of one probability run (ProbabilityResults
+    or paths of their probability.json) into exactly the unsharded run, as ``stiction
+    design merge``. The parts must be all of one kind."""
+    def is_probability(p: Any) -> bool:
+        return isinstance(p, ProbabilityResult) or (
+            not isinstance(p, DesignMap) and os.path.basename(os.fspath(p)) == "probability.json"
+        )
+
+    kinds = {is_probability(p) for p in parts}
+    if len(kinds) > 1:
+        raise InputError(
+            "parts: map parts and probability parts do not merge (give the shards of one map, "
+            "or of one probability run)"
+        )
+    if kinds == {True}:
+        natives = [p._native if isinstance(p, ProbabilityResult) else os.fspath(p) for p in parts]
+        return _probability(_stiction.design_merge_probability(natives))
     natives = [p._native if isinstance(p, DesignMap) else os.fspath(p) for p in parts]
     return _design_map(_stiction.design_merge(natives))
 
@@ -237,6 +261,74 @@ def design_merge(parts: Sequence[Union[DesignMap, PathLike]]) -> DesignMap:
 def read_map(path: PathLike) -> DesignMap:
     """Reads a map.json of ``stiction design map`` (whole, merged or a shard)."""
     return _design_map(_stiction.read_map(os.fspath(path)))
+
+
+def _probability(native: Any) -> ProbabilityResult:
+    return ProbabilityResult(native.data(), native)
+
+
+def design_probability(
+    scene: SceneLike,
+    scatter: Union[str, Sequence[str]],
+    samples: int = 1000,
+    seed: int = 0,
+    correlate: Union[str, Sequence[str], None] = None,
+    confidence: float = 0.95,
+    accuracy: Optional[str] = None,
+    shard: Optional[str] = None,
+    target_halfwidth: Optional[float] = None,
+    exact: bool = True,
+) -> ProbabilityResult:
+    """The probability that a switch sticks when its design fields scatter from die to
+    die, as ``stiction design probability --scatter ... --samples N --seed K``.
+
+    `scatter`: the CLI's ``--scatter`` strings ``"FIELD=DIST"``, FIELD any field of
+    :func:`design_map` (:func:`variable_fields`), DIST ``normal(mean,sd)``,
+    ``lognormal(median,factor)`` (factor = exp(sigma)), ``uniform(lo,hi)`` or
+    ``weibull(scale,shape)`` in the field's SI unit (m, Pa, J/m^2, Pa/m, V ...), e.g.
+    ``"surface.sigma_s=lognormal(7.78e-9,1.1)"``. A distribution that puts more than 1e-6
+    of its mass outside the field's domain raises :class:`InputError` naming the field
+    (values are never clipped). `correlate`: ``"A,B=RHO"`` strings (Gaussian copula).
+    `samples` devices are drawn (sample i from (`seed`, i) alone) and run in parallel
+    threads, each a design point of the scene (until accommodated); `confidence` of the
+    Clopper-Pearson intervals; `accuracy` of the design points (``"fast"`` for Monte
+    Carlo); `shard` ``"K/N"`` runs part K of N (join with :func:`design_merge`);
+    `target_halfwidth` stops once the stiction interval's half-width is at most it
+    (checked every 100 samples); `exact` (with one scattered field) also computes the
+    exact answer, the distribution's CDF at the field's critical value.
+
+    The result: ``.stiction_probability`` with ``.ci_low``, ``.ci_high`` (pure numbers),
+    ``.by_cycle`` (numpy columns ``cycle``, ``probability``, ``ci_low``, ``ci_high``),
+    ``.does_not_close_probability``, ``.outside_validity`` (a count), ``.driver`` and
+    ``.rank_correlation``, ``.exact``, and every sample in ``.points``
+    (``.values_of(field)``, ``.column("pull_out_ratio")`` as numpy arrays)."""
+    scatter_list = [scatter] if isinstance(scatter, str) else list(scatter)
+    if correlate is None:
+        correlate_list: List[str] = []
+    elif isinstance(correlate, str):
+        correlate_list = [correlate]
+    else:
+        correlate_list = list(correlate)
+    return _probability(
+        _stiction.design_probability(
+            scene,
+            scatter_list,
+            samples,
+            seed,
+            correlate_list,
+            confidence,
+            accuracy,
+            shard,
+            target_halfwidth,
+            exact,
+        )
+    )
+
+
+def read_probability(path: PathLike) -> ProbabilityResult:
+    """Reads a probability.json of ``stiction design probability`` (whole, merged or a
+    shard), checked as ``stiction design merge`` checks it."""
+    return _probability(_stiction.read_probability(os.fspath(path)))
 
 
 def tabulate_law(

@@ -44,6 +44,14 @@ __all__ = [
     "MapPoint",
     "DesignMap",
     "ThresholdResult",
+    "Estimate",
+    "ProbabilityCounts",
+    "Stopping",
+    "CycleProbabilities",
+    "RankCorrelations",
+    "ExactAnswer",
+    "ProbabilitySample",
+    "ProbabilityResult",
     "Histories",
     "LawResult",
     "LawEvaluation",
@@ -707,6 +715,193 @@ class ThresholdResult(Record):
     unit: Optional[str]  #: SI unit of the field
     validity: Validity
     warnings: List[ModelWarning]
+
+
+# ---------------------------------------------------------------- probability
+
+
+class Estimate(Record):
+    """A probability with its exact binomial (Clopper-Pearson) interval."""
+
+    count: int  #: counted samples with the outcome
+    probability: Optional[float]  #: count / counted samples (None when nothing was counted)
+    ci_low: float  #: lower end of the interval (0 when nothing was counted)
+    ci_high: float  #: upper end (1 when nothing was counted)
+
+
+class ProbabilityCounts(Record):
+    """The samples of a probability run by outcome. ``sticks + free + does_not_close``
+    are the counted samples (the denominator); the others are counted apart."""
+
+    sticks: int  #: counted samples that stick at some cycle
+    free: int  #: counted samples that close and never stick
+    does_not_close: int  #: counted samples whose electrode never reaches contact
+    outside_validity: int  #: ran, outside the model's validity (apart)
+    out_of_domain: int  #: a value out of a field's domain (apart; never clipped)
+    failed: int  #: failed numerically (apart)
+    not_accommodated: int  #: counted closing samples that reached the cycle cap first
+    near_threshold: int  #: counted closing samples with a ratio within the mode's error of 1
+
+
+class Stopping(Record):
+    """How a probability run stopped."""
+
+    rule: str  #: samples (all requested ran) | target_halfwidth (stopped early)
+    samples_requested: int  #: the samples asked for (the cap with a target half-width)
+    target_halfwidth: Optional[float]  #: the target half-width of the stiction interval
+    halfwidth: float  #: the half-width reached
+    target_met: Optional[bool]  #: None without a target
+
+
+class CycleProbabilities(Table):
+    """P(stuck by cycle n), one row per cycle n = 1 .. the scene's cycles: ``cycle``
+    (int), ``probability``, ``ci_low``, ``ci_high`` (Clopper-Pearson, pure numbers) and
+    ``sticking`` (samples stuck by that cycle, int)."""
+
+    _units = {"cycle": "-", "probability": "-", "ci_low": "-", "ci_high": "-", "sticking": "-"}
+    cycle: np.ndarray
+    probability: np.ndarray
+    ci_low: np.ndarray
+    ci_high: np.ndarray
+    sticking: np.ndarray
+
+
+class RankCorrelations(Table):
+    """Spearman's rank correlation of each scattered field with the pull-out ratio (over
+    the counted samples that close): ``field``, ``spearman`` (NaN when undefined),
+    ``ci_low``, ``ci_high`` (approximate, Fisher z), ``samples`` (pairs used)."""
+
+    _units = {"field": "", "spearman": "-", "ci_low": "-", "ci_high": "-", "samples": "-"}
+
+
+class ExactAnswer(Record):
+    """The exact single-field answer: the field's threshold (``design threshold`` over its
+    quantiles 1e-6 .. 1 - 1e-6) and the distribution's CDF there, when the ratio is
+    monotone in the field."""
+
+    field: str  #: the scattered field
+    available: bool  #: whether there is an exact answer (else ``reason``)
+    reason: Optional[str]  #: why there is none
+    monotone: bool  #: the ratio is monotone in the field over the range
+    direction: Optional[str]  #: increasing | decreasing: the ratio in the field
+    stiction_probability: Optional[float]  #: F(critical value) or 1 - F(critical value)
+    uncertainty: Optional[float]  #: from the critical value's uncertainty (density x it)
+    does_not_close_probability: Optional[float]  #: the mass beyond the closure boundary
+    does_not_close_uncertainty: Optional[float]
+    critical_value: Optional[float]  #: where the ratio crosses 1 (the field's SI unit)
+    free_side: str  #: above | below | unknown: where the switch is free of stiction
+    boundaries: List[Dict[str, Any]]  #: kind, value, uncertainty, cdf, side, crossing
+    range: np.ndarray  #: the searched range [lo, hi] (the field's SI unit)
+    tail_mass: float  #: the distribution's mass outside the range
+    evaluations: int  #: design points run
+    scan_outside_validity: Optional[int]  #: scan points outside the model's validity
+
+
+class ProbabilitySample(MapPoint):
+    """One sample of a probability run (a row of samples.csv, a point of
+    probability.json): its field values drawn from (seed, index) alone, its status and its
+    design point (None where the sample has none: out of domain, failed)."""
+
+
+class ProbabilityResult(Record):
+    """The probability of stiction under process scatter (``stiction design
+    probability``): every sample a design point of the scene at its scattered values.
+    Probabilities are over the *counted* samples (``denominator``: inside the model's
+    validity, ``ok`` or ``does_not_close``); the others are counted apart
+    (``outside_validity``, ``counts``). ``to_json()`` and ``to_csv()`` are the command's
+    probability.json and samples.csv, byte for byte; ``save(folder)`` writes them."""
+
+    format: str  #: "stiction-design-probability"
+    version: int
+    samples: int  #: samples run (all statuses)
+    stiction_probability: Optional[float]  #: P(stiction after accommodation) (None: nothing counted)
+    ci_low: float  #: its Clopper-Pearson lower end
+    ci_high: float  #: its upper end
+    confidence: float  #: of every interval (0.95 unless asked)
+    does_not_close_probability: Optional[float]  #: P(the switch does not close)
+    outside_validity: int  #: samples outside the model's validity, counted apart
+    by_cycle: CycleProbabilities  #: P(stuck by cycle n) with its interval, n = 1 .. cycles
+    denominator: int  #: the counted samples
+    stiction: Estimate  #: the stiction estimate with its count
+    does_not_close: Estimate  #: the does-not-close estimate with its count
+    counts: ProbabilityCounts  #: samples by outcome
+    rank_correlation: RankCorrelations  #: Spearman's rho of each field with the pull-out ratio
+    driver: Optional[str]  #: the field of largest |rho|: the one that drives failure most
+    stopping: Stopping  #: how the run stopped
+    exact_inside_interval: Optional[bool]  #: whether the exact answer lies in the interval
+    exact: Optional[ExactAnswer]  #: with a single scattered field (unless exact=False)
+    accuracy: str  #: accuracy mode of the samples
+    ratio_rel_error: float  #: relative error of the ratio in that mode
+    scatter: List[str]  #: the scattered fields, ``FIELD=DIST`` (SI)
+    correlate: List[str]  #: the correlations, ``A,B=RHO``
+    seed: int  #: sample i's values depend on (seed, i) alone
+    samples_requested: int
+    cycles: int  #: the scene's cycle cap
+    target_halfwidth: Optional[float]
+    shard: Optional[Dict[str, Any]]  #: this run's part K of N, for a shard
+    scene: Dict[str, Any]  #: the scene as run (design settings applied)
+    points: List[ProbabilitySample]  #: every sample, in index order
+    warnings: List[ModelWarning]  #: guards the samples raised (one per kind, with counts)
+    validity: Optional[Validity]  #: whether the model holds at every sample (None when read back or merged)
+
+    def __init__(self, data: Mapping[str, Any], native: Any = None) -> None:
+        super().__init__(data)
+        object.__setattr__(self, "_native", native)
+
+    def keys(self) -> List[str]:
+        return [k for k in self.__dict__ if k != "_native"]
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, ProbabilityResult):
+            return NotImplemented
+        return self.to_json() == other.to_json()
+
+    def to_dict(self) -> Dict[str, Any]:
+        d = super().to_dict()
+        d.pop("_native", None)
+        return d
+
+    def column(self, name: str) -> np.ndarray:
+        """One field of every sample as a numpy array in index order (float with NaN where
+        a sample has none, bool for flags, object otherwise)."""
+        cells = [getattr(p, name) for p in self.points]
+        if cells and all(isinstance(c, bool) for c in cells):
+            return np.asarray(cells, dtype=bool)
+        if all(c is None or (isinstance(c, (int, float)) and not isinstance(c, bool)) for c in cells):
+            return np.asarray([np.nan if c is None else c for c in cells], dtype=float)
+        return np.asarray(cells, dtype=object)
+
+    def values_of(self, field: str) -> np.ndarray:
+        """The values of a scattered field at every sample (SI), in index order."""
+        return np.asarray([p.values[field] for p in self.points], dtype=float)
+
+    def counted(self) -> np.ndarray:
+        """Whether each sample is in the denominator (bool array, index order)."""
+        return np.asarray(
+            [p.status in ("ok", "does_not_close") and bool(p.validity_holds) for p in self.points], dtype=bool
+        )
+
+    def to_json(self) -> str:
+        """probability.json exactly as ``stiction design probability --out`` writes it."""
+        return self._native.to_json()
+
+    def summary_json(self) -> str:
+        """What ``stiction design probability --format json`` prints (no samples)."""
+        return self._native.summary_json()
+
+    def to_csv(self) -> str:
+        """samples.csv exactly as ``stiction design probability --out`` writes it."""
+        return self._native.to_csv()
+
+    def save(self, folder: Any) -> None:
+        """Writes probability.json and samples.csv to `folder` (made if missing): a folder
+        ``stiction design merge`` reads (the plot, probability.svg, is the command's)."""
+        import os
+
+        os.makedirs(folder, exist_ok=True)
+        for name, text in (("probability.json", self.to_json()), ("samples.csv", self.to_csv())):
+            with open(os.path.join(folder, name), "w", encoding="utf-8") as f:
+                f.write(text)
 
 
 # ---------------------------------------------------------------- contact law

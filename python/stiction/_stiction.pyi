@@ -197,6 +197,39 @@ def design_merge(parts: List[Union[NativeMap, str]]) -> NativeMap:
 def read_map(path: str) -> NativeMap:
     """A map.json."""
 
+class NativeProbability:
+    """A computed probability run (whole, a shard, merged)."""
+
+    def to_json(self) -> str:
+        """probability.json, byte for byte the command's."""
+    def summary_json(self) -> str:
+        """What ``--format json`` prints: probability.json without the samples."""
+    def to_csv(self) -> str:
+        """samples.csv, byte for byte the command's."""
+    def data(self) -> Dict[str, Any]:
+        """probability.json's keys as Python data, plus warnings and validity."""
+
+def design_probability(
+    scene: _SceneLike,
+    scatter: Sequence[str],
+    samples: int = 1000,
+    seed: int = 0,
+    correlate: Optional[Sequence[str]] = None,
+    confidence: float = 0.95,
+    accuracy: Optional[str] = None,
+    shard: Optional[str] = None,
+    target_halfwidth: Optional[float] = None,
+    exact: bool = True,
+) -> NativeProbability:
+    """A probability run with its samples run here (rayon): ``scatter`` FIELD=DIST in the
+    field's SI unit, ``correlate`` A,B=RHO."""
+
+def design_merge_probability(parts: List[Union[NativeProbability, str]]) -> NativeProbability:
+    """The merge of a probability run's shards."""
+
+def read_probability(path: str) -> NativeProbability:
+    """A probability.json."""
+
 class ContactLaw:
     """A tabulated contact law p(d; d_min, path)."""
 

@@ -3,6 +3,8 @@
 //! maps of the pull-out ratio (`design map`, shardable) and the merge of a map's shards
 //! (`design merge`). User guide: `docs/design.md`.
 
+pub use super::probability::ProbabilityCommand;
+use super::probability::{ProbabilityReport, PROBABILITY_FILES};
 use super::switch::AccuracyArg;
 use super::{argument_error, finish, preflight, Ctx, Outputs, SceneArgs};
 use crate::error::Error;
@@ -13,7 +15,9 @@ use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use stiction_model::design::{self, map_labels, Labels, Map, MapResult, ThresholdResult};
-use stiction_model::design_sweep::{map_table, merge, threshold_table};
+use stiction_model::design_sweep::{
+    map_table, merge, merge_probability, threshold_table, Probability,
+};
 use stiction_model::keys::Kind;
 
 /// The files `design map` and `design merge` write.
@@ -37,8 +41,13 @@ pub enum DesignAction {
     /// A 1-D or 2-D map of the pull-out ratio over one or two scene fields, written as
     /// map.csv, map.json and map.svg (points in parallel; --shard for a cluster array).
     Map(MapCommand),
-    /// Join the shards of one map (folders of `design map --shard K/N`) into exactly the
-    /// map of an unsharded run.
+    /// The probability that a switch sticks (by cycle, after accommodation) and that it
+    /// does not close when design fields scatter (FIELD=DIST): Monte Carlo with exact
+    /// binomial intervals, rank correlations, and the exact answer for a single field.
+    Probability(ProbabilityCommand),
+    /// Join the shards of one map (folders of `design map --shard K/N`), or of one
+    /// probability run (`design probability --shard K/N`), into exactly the result of an
+    /// unsharded run.
     Merge(MergeCommand),
 }
 
@@ -48,6 +57,7 @@ impl DesignCommand {
         match &self.action {
             DesignAction::Threshold(c) => c.execute(ctx),
             DesignAction::Map(c) => c.execute(ctx),
+            DesignAction::Probability(c) => c.execute(ctx),
             DesignAction::Merge(c) => c.execute(),
         }
     }
@@ -330,11 +340,13 @@ impl Render for MapReport {
 /// `stiction design merge`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct MergeCommand {
-    /// The folders of the parts (each written by `design map --shard K/N`), in any order.
+    /// The folders of the parts (each written by `design map --shard K/N`, or all by
+    /// `design probability --shard K/N`), in any order.
     #[arg(value_name = "DIR", required = true)]
     pub dirs: Vec<PathBuf>,
-    /// Write the merged map.csv, map.json and map.svg to this folder (replaced as a
-    /// whole; it may hold only those files, and it may not be one of the parts).
+    /// Write the merged map.csv, map.json and map.svg (or samples.csv, probability.json
+    /// and probability.svg) to this folder (replaced as a whole; it may hold only those
+    /// files, and it may not be one of the parts).
     #[arg(long)]
     pub out: PathBuf,
 }
@@ -343,6 +355,24 @@ impl MergeCommand {
     /// Reads the parts, merges them and writes the map; returns the summary table.
     pub fn execute(&self) -> Result<String, Error> {
         let out = absolute(&self.out);
+        // a folder of `design probability` holds probability.json and no map.json
+        let probability = |d: &PathBuf| {
+            d.join("probability.json").symlink_metadata().is_ok()
+                && d.join("map.json").symlink_metadata().is_err()
+        };
+        if let Some(first) = self.dirs.iter().find(|d| probability(d)) {
+            if let Some(map) = self.dirs.iter().find(|d| !probability(d)) {
+                return Err(Error::usage(
+                    "DIR",
+                    format!(
+                        "{} holds no probability.json while {} holds a probability run: parts of one run only (a map and a probability run do not merge)",
+                        map.display(),
+                        first.display()
+                    ),
+                ));
+            }
+            return self.execute_probability(&out);
+        }
         let mut parts = Vec::with_capacity(self.dirs.len());
         for dir in &self.dirs {
             let label = dir.display().to_string();
@@ -367,6 +397,36 @@ impl MergeCommand {
             warnings: Vec::new(),
             validity: None,
         };
+        let mut text = report.table();
+        let written = report.files(&self.out)?.commit()?;
+        let list: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+        let _ = write!(text, "\nwrote {}\n", list.join(", "));
+        Ok(text)
+    }
+}
+
+impl MergeCommand {
+    /// Merges the parts of a probability run.
+    fn execute_probability(&self, out: &Path) -> Result<String, Error> {
+        let mut parts = Vec::with_capacity(self.dirs.len());
+        for dir in &self.dirs {
+            let label = dir.display().to_string();
+            if absolute(dir) == out {
+                return Err(Error::usage(
+                    "--out",
+                    format!("{label} is one of the parts: give the merged run its own folder"),
+                ));
+            }
+            let run = Probability::read_path(dir.join("probability.json")).map_err(|e| {
+                Error::usage(
+                    "DIR",
+                    format!("{e} (a folder of `design probability --shard K/N`)"),
+                )
+            })?;
+            parts.push((label, run));
+        }
+        preflight(Some(&self.out), PROBABILITY_FILES, None)?;
+        let report = ProbabilityReport::merged(merge_probability(parts)?);
         let mut text = report.table();
         let written = report.files(&self.out)?.commit()?;
         let list: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();

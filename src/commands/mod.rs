@@ -8,6 +8,7 @@ pub mod design;
 pub mod law;
 pub mod md;
 pub mod print;
+pub mod probability;
 pub mod surface;
 pub mod switch;
 pub mod topography;
@@ -120,6 +121,12 @@ pub fn argument_error(e: ModelError) -> Error {
         }
         ModelError::Design(DesignError::Shard { option, reason }) => {
             Error::usage(&format!("--shard `{option}`"), reason.clone())
+        }
+        ModelError::Design(DesignError::Scatter { option, reason }) => {
+            Error::usage(&format!("--scatter `{option}`"), reason.clone())
+        }
+        ModelError::Design(DesignError::Correlation { option, reason }) => {
+            Error::usage(&format!("--correlate `{option}`"), reason.clone())
         }
         _ => e.into(),
     }

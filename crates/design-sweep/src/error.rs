@@ -34,7 +34,7 @@ pub enum DesignError {
     /// A `map.json` that does not parse as a design map.
     #[error("not a design map: {0}")]
     MapJson(String),
-    /// A `map.json` file that cannot be read (missing, not a regular file, larger than
+    /// A `map.json` (or `probability.json`) file that cannot be read (missing, not a regular file, larger than
     /// [`crate::MAX_MAP_BYTES`], not UTF-8) or whose content is not a design map
     /// ([`crate::Map::read_path`]).
     #[error("{path}: {reason}")]
@@ -62,6 +62,28 @@ pub enum DesignError {
         /// The first failure's message.
         detail: String,
     },
+    /// A `--scatter FIELD=DIST` option that does not parse or validate.
+    #[error("invalid scattered field `{option}`: {reason}")]
+    Scatter {
+        /// The option text as given.
+        option: String,
+        /// What is wrong, with the offending value.
+        reason: String,
+    },
+    /// A `--correlate A,B=RHO` option that does not parse or validate.
+    #[error("invalid correlation `{option}`: {reason}")]
+    Correlation {
+        /// The option text as given.
+        option: String,
+        /// What is wrong, with the offending value.
+        reason: String,
+    },
+    /// An invalid probability request (samples, confidence, target half-width, ...).
+    #[error("invalid probability request: {0}")]
+    Probability(String),
+    /// A `probability.json` that does not parse as a probability run.
+    #[error("not a probability run: {0}")]
+    ProbabilityJson(String),
     /// The plot could not be drawn.
     #[error("plot: {0}")]
     Plot(String),

@@ -15,6 +15,12 @@
 //!   map of an unsharded run, byte for byte.
 //! * [`threshold`]: scan, then Brent-Dekker refinement of every crossing of ratio = 1,
 //!   with its uncertainty; [`threshold_table`] and [`map_table`] render text tables.
+//! * [`run_probability`]: Monte Carlo over distributions of fields ([`Scatter`], `FIELD=DIST`,
+//!   optionally [`Correlation`]s), each sample's values from `(seed, index)` alone; the
+//!   probability of stiction by cycle, after accommodation and of "does not close" with
+//!   Clopper-Pearson intervals ([`stats`]), rank correlations, shards and
+//!   [`merge_probability`]; [`exact_single_field`] gives the exact answer of one monotone
+//!   field from its threshold and CDF.
 //!
 //! ```
 //! use design_sweep::{run_map, threshold, DesignPoint, Grid, Labels, MapRequest,
@@ -46,19 +52,23 @@
 //! ```
 
 mod boundary;
+mod dist;
 mod error;
 mod grid;
 mod map;
 mod plot;
 mod point;
+mod probability;
 mod requirement;
 mod shard;
+pub mod stats;
 mod table;
 mod threshold;
 
 use std::collections::BTreeMap;
 
 pub use boundary::BoundaryPoint;
+pub use dist::{Correlation, Dist, DistSpec, Sampler, Scatter, DISTRIBUTIONS};
 pub use error::DesignError;
 pub use grid::{Axis, Grid, Spacing, MAX_AXIS_POINTS, MAX_GRID_POINTS};
 pub use map::{
@@ -66,6 +76,12 @@ pub use map::{
     MAX_MAP_BYTES,
 };
 pub use point::{AccommodationCause, DesignPoint, PointError, Status};
+pub use probability::{
+    exact_range, exact_single_field, merge_probability, run_probability, Counts, CycleProbability,
+    Estimate, Exact, ExactBoundary, Outcome, Probability, ProbabilityPlan, ProbabilityView,
+    RankCorrelation, SamplePoint, Stopping, Summary, EXACT_TAIL, MAX_SAMPLES, PROBABILITY_FORMAT,
+    PROBABILITY_VERSION, SAMPLE_COLUMNS, STOP_CHECK_EVERY,
+};
 pub use requirement::{Bound, Quantity, Requirement};
 pub use shard::Shard;
 pub use table::{map_table, threshold_table};

@@ -49,6 +49,64 @@ fn kind(m: &std::fs::Metadata) -> &'static str {
     }
 }
 
+/// Reads a result file of at most [`MAX_MAP_BYTES`] bytes as UTF-8 text, refusing unread a
+/// path that is not a regular file (a FIFO, a device, a folder) or is too large; `file` is
+/// what the file should be ("a map.json"), `writer` the command that writes it, `noun`
+/// what it is not otherwise ("a design map"). Errors ([`DesignError::MapFile`]) name it.
+pub(crate) fn read_bounded(
+    path: &Path,
+    file: &str,
+    writer: &str,
+    noun: &str,
+) -> Result<String, DesignError> {
+    let shown = path.display().to_string();
+    let fail = |reason: String| DesignError::MapFile {
+        path: shown.clone(),
+        reason,
+    };
+    // the type first, from the path: opening a FIFO would block until a writer comes
+    let meta = std::fs::metadata(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+    let regular = |m: &std::fs::Metadata| -> Result<(), DesignError> {
+        if !m.is_file() {
+            return Err(fail(format!(
+                "not a regular file ({}): {file} is a file written by {writer}",
+                kind(m)
+            )));
+        }
+        if m.len() > MAX_MAP_BYTES {
+            return Err(fail(format!(
+                "{} bytes, larger than {MAX_MAP_BYTES} bytes: not {noun}",
+                m.len()
+            )));
+        }
+        Ok(())
+    };
+    regular(&meta)?;
+    let handle = std::fs::File::open(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+    // the same checks on the file opened (the path may have changed in between)
+    regular(
+        &handle
+            .metadata()
+            .map_err(|e| fail(format!("cannot read: {e}")))?,
+    )?;
+    let mut bytes = Vec::new();
+    handle
+        .take(MAX_MAP_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| fail(format!("cannot read: {e}")))?;
+    if bytes.len() as u64 > MAX_MAP_BYTES {
+        return Err(fail(format!(
+            "larger than {MAX_MAP_BYTES} bytes (it grew while read): not {noun}"
+        )));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        fail(format!(
+            "not UTF-8 text (byte {}): not {noun}",
+            e.utf8_error().valid_up_to()
+        ))
+    })
+}
+
 /// The columns of `map.csv` after the varied fields, in order.
 pub const CSV_COLUMNS: [&str; 12] = [
     "pull_out_ratio",
@@ -295,52 +353,11 @@ impl Map {
     /// while read is stopped at the cap). Errors ([`DesignError::MapFile`]) name the file.
     pub fn read_path(path: impl AsRef<Path>) -> Result<Map, DesignError> {
         let path = path.as_ref();
-        let shown = path.display().to_string();
-        let fail = |reason: String| DesignError::MapFile {
-            path: shown.clone(),
-            reason,
-        };
-        // the type first, from the path: opening a FIFO would block until a writer comes
-        let meta = std::fs::metadata(path).map_err(|e| fail(format!("cannot read: {e}")))?;
-        let regular = |m: &std::fs::Metadata| -> Result<(), DesignError> {
-            if !m.is_file() {
-                return Err(fail(format!(
-                    "not a regular file ({}): a map.json is a file written by `design map`",
-                    kind(m)
-                )));
-            }
-            if m.len() > MAX_MAP_BYTES {
-                return Err(fail(format!(
-                    "{} bytes, larger than {MAX_MAP_BYTES} bytes: not a design map",
-                    m.len()
-                )));
-            }
-            Ok(())
-        };
-        regular(&meta)?;
-        let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot read: {e}")))?;
-        // the same checks on the file opened (the path may have changed in between)
-        regular(
-            &file
-                .metadata()
-                .map_err(|e| fail(format!("cannot read: {e}")))?,
-        )?;
-        let mut bytes = Vec::new();
-        file.take(MAX_MAP_BYTES + 1)
-            .read_to_end(&mut bytes)
-            .map_err(|e| fail(format!("cannot read: {e}")))?;
-        if bytes.len() as u64 > MAX_MAP_BYTES {
-            return Err(fail(format!(
-                "larger than {MAX_MAP_BYTES} bytes (it grew while read): not a design map"
-            )));
-        }
-        let text = String::from_utf8(bytes).map_err(|e| {
-            fail(format!(
-                "not UTF-8 text (byte {}): not a design map",
-                e.utf8_error().valid_up_to()
-            ))
-        })?;
-        Map::from_json(&text).map_err(|e| fail(e.to_string()))
+        let text = read_bounded(path, "a map.json", "`design map`", "a design map")?;
+        Map::from_json(&text).map_err(|e| DesignError::MapFile {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })
     }
 
     /// Reads a `map.json` back (numbers bit-identical), checking it is consistent: known
@@ -399,72 +416,7 @@ impl Map {
                     "point {i}: values.{k}: not a field of the grid"
                 )));
             }
-            let status = Status::from_parts(&p.status, p.detail.clone())
-                .ok_or_else(|| bad(format!("point {i}: unknown status `{}`", p.status)))?;
-            // a detail exactly where the writer puts one: with out_of_domain and failed
-            match (status.detail().is_some(), &p.detail) {
-                (true, None) => {
-                    return Err(bad(format!(
-                        "point {i}: detail missing: status `{}` says why in `detail`",
-                        p.status
-                    )))
-                }
-                (false, Some(d)) => {
-                    return Err(bad(format!(
-                        "point {i}: detail = {:?}: status `{}` has no detail",
-                        d.chars().take(60).collect::<String>(),
-                        p.status
-                    )))
-                }
-                _ => {}
-            }
-            let design = match (
-                status.has_design(),
-                p.pull_out_ratio,
-                p.largest_pull_out_pa,
-                p.restoring_pressure_pa,
-                p.sticks,
-                p.closes,
-            ) {
-                (true, Some(r), Some(po), Some(rp), Some(sticks), Some(closes)) => {
-                    let d = DesignPoint {
-                        pull_out_ratio: r,
-                        largest_pull_out_pa: po,
-                        restoring_pressure_pa: rp,
-                        cycles_to_accommodation: p.cycles_to_accommodation,
-                        first_sticking_cycle: p.first_sticking_cycle,
-                        sticks,
-                        closes,
-                        validity_holds: p.validity_holds.unwrap_or(true),
-                        accommodation_cause: p.accommodation_cause,
-                        contact_resistance: p.contact_resistance,
-                        real_contact_fraction: p.real_contact_fraction,
-                    };
-                    if closes != (status == Status::Ok) {
-                        return Err(bad(format!(
-                            "point {i}: closes = {closes} with status `{}`: a point is `ok` \
-                             exactly when the switch closes (`does_not_close` otherwise)",
-                            p.status
-                        )));
-                    }
-                    d.check().map_err(|m| bad(format!("point {i}: {m}")))?;
-                    Some(d)
-                }
-                (false, None, None, None, None, None)
-                    if p.cycles_to_accommodation.is_none()
-                        && p.first_sticking_cycle.is_none()
-                        && p.contact_resistance.is_none()
-                        && p.real_contact_fraction.is_none() =>
-                {
-                    None
-                }
-                _ => {
-                    return Err(bad(format!(
-                        "point {i}: status `{}` does not match the values present",
-                        p.status
-                    )))
-                }
-            };
+            let (status, design) = point_design(i, &p).map_err(bad)?;
             // the window marks are derived: present exactly with a requirement, and true
             let marks = match (&m.requirement, &design) {
                 (Some(r), Some(d)) => (r.met(d), Some(r.in_window(d))),
@@ -530,6 +482,80 @@ impl Map {
         }
         s
     }
+}
+
+/// The status and design point of a point record (of `map.json` or `probability.json`),
+/// checked: a known status, a detail exactly with `out_of_domain` and `failed`, the values
+/// present matching the status, and the design point consistent
+/// ([`DesignPoint::check`]). The error names the point index and the key.
+pub(crate) fn point_design(i: usize, p: &PointIn) -> Result<(Status, Option<DesignPoint>), String> {
+    let status = Status::from_parts(&p.status, p.detail.clone())
+        .ok_or_else(|| format!("point {i}: unknown status `{}`", p.status))?;
+    // a detail exactly where the writer puts one: with out_of_domain and failed
+    match (status.detail().is_some(), &p.detail) {
+        (true, None) => {
+            return Err(format!(
+                "point {i}: detail missing: status `{}` says why in `detail`",
+                p.status
+            ))
+        }
+        (false, Some(d)) => {
+            return Err(format!(
+                "point {i}: detail = {:?}: status `{}` has no detail",
+                d.chars().take(60).collect::<String>(),
+                p.status
+            ))
+        }
+        _ => {}
+    }
+    let design = match (
+        status.has_design(),
+        p.pull_out_ratio,
+        p.largest_pull_out_pa,
+        p.restoring_pressure_pa,
+        p.sticks,
+        p.closes,
+    ) {
+        (true, Some(r), Some(po), Some(rp), Some(sticks), Some(closes)) => {
+            let d = DesignPoint {
+                pull_out_ratio: r,
+                largest_pull_out_pa: po,
+                restoring_pressure_pa: rp,
+                cycles_to_accommodation: p.cycles_to_accommodation,
+                first_sticking_cycle: p.first_sticking_cycle,
+                sticks,
+                closes,
+                validity_holds: p.validity_holds.unwrap_or(true),
+                accommodation_cause: p.accommodation_cause,
+                contact_resistance: p.contact_resistance,
+                real_contact_fraction: p.real_contact_fraction,
+            };
+            if closes != (status == Status::Ok) {
+                return Err(format!(
+                    "point {i}: closes = {closes} with status `{}`: a point is `ok` \
+                     exactly when the switch closes (`does_not_close` otherwise)",
+                    p.status
+                ));
+            }
+            d.check().map_err(|m| format!("point {i}: {m}"))?;
+            Some(d)
+        }
+        (false, None, None, None, None, None)
+            if p.cycles_to_accommodation.is_none()
+                && p.first_sticking_cycle.is_none()
+                && p.contact_resistance.is_none()
+                && p.real_contact_fraction.is_none() =>
+        {
+            None
+        }
+        _ => {
+            return Err(format!(
+                "point {i}: status `{}` does not match the values present",
+                p.status
+            ))
+        }
+    };
+    Ok((status, design))
 }
 
 /// Counts of a map's points.
@@ -707,7 +733,7 @@ fn describe(g: &Grid) -> String {
 }
 
 /// The JSON pointer of the first place where `a` and `b` differ.
-fn first_difference(a: &Value, b: &Value, at: String) -> String {
+pub(crate) fn first_difference(a: &Value, b: &Value, at: String) -> String {
     match (a, b) {
         (Value::Object(x), Value::Object(y)) => {
             for (k, v) in x {
@@ -828,9 +854,9 @@ struct MapIn {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct PointIn {
-    index: usize,
-    values: BTreeMap<String, f64>,
+pub(crate) struct PointIn {
+    pub(crate) index: usize,
+    pub(crate) values: BTreeMap<String, f64>,
     status: String,
     #[serde(default)]
     detail: Option<String>,

@@ -256,6 +256,15 @@ pub fn variable_fields() -> impl Iterator<Item = &'static Key> {
 /// key of a switch scene, and not in conflict with the scene's drive or counter-surface.
 /// The error (argument `vary`) says what to give.
 pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, ModelError> {
+    check_field_as(field, base, "vary")
+}
+
+/// [`check_field`] for a field given by the argument `argument` (`vary`, `scatter`).
+pub fn check_field_as(
+    field: &str,
+    base: &SwitchSpec,
+    argument: &str,
+) -> Result<&'static Key, ModelError> {
     let list = || {
         variable_fields()
             .map(|f| f.key)
@@ -264,7 +273,7 @@ pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, Model
     };
     let fail = |message: String| {
         Err(ModelError::Option {
-            name: "vary".into(),
+            name: argument.into(),
             message,
         })
     };
@@ -363,7 +372,7 @@ pub fn root_tolerance(accuracy: Accuracy) -> f64 {
 
 /// The base of a design question: the scene with the design settings, validated once
 /// (so that a scene error is reported against the scene file).
-fn base_spec(
+pub(crate) fn base_spec(
     scene: &Scene,
     registry: &LawRegistry,
     accuracy: Option<Accuracy>,

@@ -11,7 +11,8 @@
 //!   truth for validation, defaults, echoes and the docs;
 //! * [`laws::LawRegistry`]: adhesion and plasticity laws by name, built-in and a user's own;
 //! * [`spec`]: validated scenes, checked once;
-//! * [`asperity`], [`surface`], [`switch`], [`law`], [`design`], [`md`], [`calibration`]:
+//! * [`asperity`], [`surface`], [`switch`], [`law`], [`design`], [`probability`], [`md`],
+//!   [`calibration`]:
 //!   the models and their runs, each returning a `Serialize` result;
 //! * [`guards`]: the physics checks and the model's [`guards::Validity`] on every result.
 //!
@@ -49,6 +50,7 @@ pub mod law;
 pub mod laws;
 pub mod md;
 pub mod ohmic;
+pub mod probability;
 pub mod scene;
 pub mod scenegen;
 pub mod spec;

@@ -1,0 +1,417 @@
+//! Probability runs on analytic stand-ins of the switch, where every answer is known: the
+//! exact single-field answer against the CDF at the critical value, Monte Carlo against it,
+//! the coverage of the Clopper-Pearson interval over many seeds, shards merged against one
+//! run, and the same samples on any thread count.
+
+mod common;
+
+use common::point;
+use design_sweep::{
+    exact_range, exact_single_field, merge_probability, run_probability, stats, Correlation,
+    DesignError, DesignPoint, Outcome, PointError, Probability, ProbabilityPlan, Scatter, Shard,
+    ThresholdOptions,
+};
+
+const CYCLES: usize = 10;
+
+/// A switch whose pull-out ratio after accommodation is `ratio`, reached over the cycles as
+/// ratio_n = ratio (1 - 2^-n) / (1 - 2^-CYCLES): the first sticking cycle is the first n
+/// with ratio_n > 1.
+fn cycled(ratio: f64, restoring: f64) -> DesignPoint {
+    let mut d = point(ratio, restoring);
+    let g = |n: usize| (1.0 - 0.5f64.powi(n as i32)) / (1.0 - 0.5f64.powi(CYCLES as i32));
+    d.first_sticking_cycle = (1..=CYCLES).find(|&n| ratio * g(n) > 1.0);
+    d.sticks = d.first_sticking_cycle.is_some();
+    d
+}
+
+/// ratio = (k0 / k)^2: sticks below k0.
+fn spring(k0: f64) -> impl Fn(&[(&str, f64)]) -> Result<DesignPoint, PointError> + Sync {
+    move |v| Ok(cycled((k0 / v[0].1).powi(2), v[0].1 * 2e-6))
+}
+
+fn plan(scatter: &[&str], samples: usize, seed: u64) -> ProbabilityPlan {
+    ProbabilityPlan {
+        scene: serde_json::json!({"title": "stand-in"}),
+        accuracy: "fast".into(),
+        ratio_rel_error: 1e-4,
+        scatter: scatter.iter().map(|s| Scatter::parse(s).unwrap()).collect(),
+        correlations: Vec::new(),
+        seed,
+        samples,
+        confidence: 0.95,
+        cycles: CYCLES,
+        target_halfwidth: None,
+        shard: None,
+    }
+}
+
+fn run<F>(p: ProbabilityPlan, f: F) -> Probability
+where
+    F: Fn(&[(&str, f64)]) -> Result<DesignPoint, PointError> + Sync,
+{
+    run_probability(p, f, |_, _| {}).unwrap()
+}
+
+#[test]
+fn a_single_monotone_field_gives_the_cdf_at_the_critical_value_and_monte_carlo_agrees() {
+    let k0 = 1.1e10;
+    let s = "switch.k_s=lognormal(1.3e10,1.25)";
+    let sc = Scatter::parse(s).unwrap();
+    let range = exact_range(&sc, 0.0, 1e20);
+    let options = ThresholdOptions {
+        tolerance: 1e-9,
+        ratio_rel_error: 1e-8,
+        scan_points: None,
+    };
+    let f = spring(k0);
+    let exact = exact_single_field(&sc, range, |k| f(&[("switch.k_s", k)]), &options).unwrap();
+    assert!(exact.available && exact.monotone, "{exact:?}");
+    assert_eq!(exact.direction.as_deref(), Some("decreasing"));
+    assert_eq!(exact.free_side, "above");
+    let crit = exact.critical_value.unwrap();
+    assert!((crit / k0 - 1.0).abs() < 1e-8, "{crit}");
+    let p_exact = exact.stiction_probability.unwrap();
+    // P = F(critical value): the distribution's CDF at the threshold
+    assert_eq!(p_exact, sc.dist.cdf(crit));
+    assert!((p_exact - sc.dist.cdf(k0)).abs() < 1e-8);
+    assert_eq!(exact.does_not_close_probability, Some(0.0));
+    assert!(exact.uncertainty.unwrap() < 1e-7 && exact.tail_mass < 2.1e-6);
+
+    let r = run(plan(&[s], 2000, 11), f).with_exact(Some(exact));
+    let sum = r.summary();
+    assert_eq!(sum.samples, 2000);
+    assert_eq!(sum.denominator, 2000);
+    let p = sum.stiction_probability.unwrap();
+    assert!(
+        sum.ci_low <= p_exact && p_exact <= sum.ci_high,
+        "{p_exact} not in [{}, {}]",
+        sum.ci_low,
+        sum.ci_high
+    );
+    assert_eq!(sum.exact_inside_interval, Some(true));
+    // the curve by cycle rises to the answer after accommodation
+    assert_eq!(sum.by_cycle.len(), CYCLES);
+    assert!(sum
+        .by_cycle
+        .windows(2)
+        .all(|w| w[1].probability >= w[0].probability));
+    assert_eq!(sum.by_cycle[CYCLES - 1].probability, p);
+    // cycle 1 sticks where ratio (1/2)/(1 - 2^-10) > 1: k < k0 sqrt(g1)
+    let g1 = 0.5 / (1.0 - 0.5f64.powi(10));
+    let p1 = sc.dist.cdf(k0 * g1.sqrt());
+    let c1 = &sum.by_cycle[0];
+    assert!(
+        c1.ci_low <= p1 && p1 <= c1.ci_high && c1.probability < p,
+        "{c1:?} vs {p1}"
+    );
+    // the one field drives failure, against the ratio: rho = -1 (ratio decreasing in k)
+    assert_eq!(sum.driver.as_deref(), Some("switch.k_s"));
+    assert_eq!(sum.rank_correlation[0].spearman, Some(-1.0));
+    let json: serde_json::Value = serde_json::from_str(&r.summary_json()).unwrap();
+    for key in [
+        "samples",
+        "stiction_probability",
+        "ci_low",
+        "ci_high",
+        "does_not_close_probability",
+        "outside_validity",
+        "by_cycle",
+    ] {
+        assert!(json.get(key).is_some(), "{key} missing");
+    }
+    assert_eq!(json["confidence"], 0.95);
+    assert!(
+        json.get("points").is_none(),
+        "the summary leaves the samples out"
+    );
+    let c = &json["by_cycle"][0];
+    for key in ["cycle", "probability", "ci_low", "ci_high"] {
+        assert!(c.get(key).is_some(), "by_cycle.{key} missing");
+    }
+}
+
+#[test]
+fn a_closure_boundary_splits_the_mass_between_sticking_and_not_closing() {
+    // sticks below 5, free from 5 to 8, does not close above 8
+    let f = |k: f64| -> Result<DesignPoint, PointError> {
+        if k > 8.0 {
+            Ok(DesignPoint::does_not_close(k))
+        } else {
+            Ok(point((5.0 / k).powi(3), k))
+        }
+    };
+    let sc = Scatter::parse("switch.k_s=uniform(2,10)").unwrap();
+    let o = ThresholdOptions {
+        tolerance: 1e-9,
+        ratio_rel_error: 1e-8,
+        scan_points: None,
+    };
+    let e = exact_single_field(&sc, exact_range(&sc, 0.0, 1e20), f, &o).unwrap();
+    assert!(e.available, "{e:?}");
+    assert!((e.stiction_probability.unwrap() - 3.0 / 8.0).abs() < 1e-8);
+    assert!((e.does_not_close_probability.unwrap() - 2.0 / 8.0).abs() < 1e-7);
+    assert_eq!(e.boundaries.len(), 2);
+    assert_eq!(e.boundaries[1].kind, "closure");
+    // Monte Carlo: the three outcomes partition the counted samples
+    let r = run(plan(&["switch.k_s=uniform(2,10)"], 800, 5), |v| f(v[0].1));
+    let s = r.summary();
+    assert_eq!(
+        s.counts.sticks + s.counts.free + s.counts.does_not_close,
+        800
+    );
+    let (lo, hi) = (s.does_not_close.ci_low, s.does_not_close.ci_high);
+    assert!(lo <= 0.25 && 0.25 <= hi, "[{lo}, {hi}]");
+    assert!(s.ci_low <= 0.375 && 0.375 <= s.ci_high);
+}
+
+#[test]
+fn a_ratio_that_is_not_monotone_gives_no_exact_answer_and_says_why() {
+    // sticks only inside (3, 6)
+    let f = |k: f64| Ok::<_, PointError>(point(2.0 - ((k - 4.5) / 1.5).powi(2), 1.0).clamp_ratio());
+    let sc = Scatter::parse("switch.k_s=uniform(1,9)").unwrap();
+    let e = exact_single_field(
+        &sc,
+        exact_range(&sc, 0.0, 1e20),
+        f,
+        &ThresholdOptions::default(),
+    )
+    .unwrap();
+    assert!(!e.available && !e.monotone);
+    assert!(e.reason.unwrap().contains("not monotone"));
+    assert!(e.stiction_probability.is_none());
+}
+
+trait Clamp {
+    fn clamp_ratio(self) -> DesignPoint;
+}
+impl Clamp for DesignPoint {
+    /// A ratio kept positive (the stand-in's parabola dips below 0).
+    fn clamp_ratio(self) -> DesignPoint {
+        let r = self.pull_out_ratio.max(1e-3);
+        point(r, self.restoring_pressure_pa)
+    }
+}
+
+#[test]
+fn the_interval_covers_the_true_probability_in_at_least_its_confidence_over_many_seeds() {
+    // a device sticks when its field is below the 0.1 quantile: p = 0.1 exactly
+    let f =
+        |v: &[(&str, f64)]| Ok::<_, PointError>(cycled(if v[0].1 < 0.1 { 2.0 } else { 0.5 }, 1.0));
+    for (n, runs) in [(60usize, 1000u64), (400, 1000)] {
+        let mut covered = 0;
+        for seed in 0..runs {
+            let s = run(plan(&["a.u=uniform(0,1)"], n, seed), f)
+                .summary()
+                .clone();
+            if s.ci_low <= 0.1 && 0.1 <= s.ci_high {
+                covered += 1;
+            }
+        }
+        let c = covered as f64 / runs as f64;
+        eprintln!("n = {n}: coverage {c} over {runs} seeds");
+        assert!(c >= 0.93, "n = {n}: coverage {c}");
+    }
+    // stopping at a target half-width keeps the coverage
+    let mut covered = 0;
+    for seed in 0..300 {
+        let mut p = plan(&["a.u=uniform(0,1)"], 20_000, 1000 + seed);
+        p.target_halfwidth = Some(0.03);
+        let r = run(p, f);
+        let s = r.summary();
+        assert!(s.stopping.target_met == Some(true) && s.ci_high - s.ci_low <= 0.06);
+        assert!(s.samples.is_multiple_of(100));
+        if s.ci_low <= 0.1 && 0.1 <= s.ci_high {
+            covered += 1;
+        }
+    }
+    eprintln!("target half-width 0.03: coverage {covered}/300");
+    assert!(
+        covered as f64 / 300.0 >= 0.93,
+        "sequential coverage {covered}/300"
+    );
+}
+
+/// A stand-in with every kind of sample: failures, refusals, outside validity, switches
+/// that do not close, and a panic.
+fn mixed(v: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
+    let (k, w) = (v[0].1, v[1].1);
+    if k < 2.0 {
+        return Err(PointError::OutOfDomain(format!("switch.k_s = {k} below 2")));
+    }
+    if (4.0..4.1).contains(&k) {
+        return Err(PointError::Failed("no convergence".into()));
+    }
+    if (5.0..5.1).contains(&k) {
+        panic!("a bug");
+    }
+    if k > 9.0 {
+        return Ok(DesignPoint::does_not_close(k));
+    }
+    let mut d = cycled(w * 6.0 / k, k);
+    if w > 1.3 {
+        d.validity_holds = false;
+    }
+    Ok(d)
+}
+
+fn mixed_plan(samples: usize) -> ProbabilityPlan {
+    let mut p = plan(
+        &[
+            "switch.k_s=uniform(1.5,10)",
+            "contact.work_of_adhesion=lognormal(1,1.2)",
+        ],
+        samples,
+        42,
+    );
+    p.correlations = vec![Correlation::parse("switch.k_s,contact.work_of_adhesion=0.3").unwrap()];
+    p
+}
+
+#[test]
+fn samples_apart_stay_out_of_the_denominator() {
+    let r = run(mixed_plan(600), mixed);
+    let s = r.summary();
+    let c = s.counts;
+    assert!(c.out_of_domain > 0 && c.failed > 0 && c.outside_validity > 0 && c.does_not_close > 0);
+    assert_eq!(
+        c.sticks + c.free + c.does_not_close + c.outside_validity + c.out_of_domain + c.failed,
+        600
+    );
+    assert_eq!(s.denominator, c.sticks + c.free + c.does_not_close);
+    assert_eq!(s.outside_validity, c.outside_validity);
+    assert_eq!(
+        s.stiction_probability,
+        Some(c.sticks as f64 / s.denominator as f64)
+    );
+    let (lo, hi) = stats::clopper_pearson(c.sticks, s.denominator, 0.95).unwrap();
+    assert_eq!((s.ci_low, s.ci_high), (lo, hi));
+    for p in r.points() {
+        assert_eq!(
+            p.counted(),
+            matches!(
+                p.outcome(),
+                Outcome::Sticks | Outcome::Free | Outcome::DoesNotClose
+            )
+        );
+    }
+    // the panic became a failed sample with its message
+    let csv = r.to_csv().unwrap();
+    assert!(csv.contains("evaluator panicked: a bug"));
+    assert!(csv.starts_with(
+        "index,switch.k_s,contact.work_of_adhesion,status,counted,pull_out_ratio,first_sticking_cycle,"
+    ));
+    assert_eq!(csv.lines().count(), 601);
+    // the spring (k in 2..9 against w's 20 % scatter) drives the ratio more than w
+    assert_eq!(s.driver.as_deref(), Some("switch.k_s"));
+    assert!(s.rank_correlation[0].spearman.unwrap() < -0.7);
+}
+
+#[test]
+fn shards_merged_equal_one_run_bit_for_bit_and_read_back_exactly() {
+    let whole = run(mixed_plan(250), mixed);
+    let parts: Vec<(String, Probability)> = [2, 3, 1]
+        .iter()
+        .map(|&k| {
+            let mut p = mixed_plan(250);
+            p.shard = Some(Shard::new(k, 3).unwrap());
+            let r = run(p, mixed);
+            // through the file, as `design merge` reads it
+            let back = Probability::from_json(&r.to_json()).unwrap();
+            assert_eq!(back, r);
+            (format!("part-{k}"), back)
+        })
+        .collect();
+    let merged = merge_probability(parts.clone()).unwrap();
+    assert_eq!(merged.to_json(), whole.to_json());
+    assert_eq!(merged.to_csv().unwrap(), whole.to_csv().unwrap());
+    assert_eq!(merged, whole);
+    // a missing part, a repeated part, parts of another seed are refused by name
+    let e = merge_probability(parts[..2].to_vec()).unwrap_err();
+    assert!(e.to_string().contains("missing part(s) 1/3"), "{e}");
+    let e =
+        merge_probability(vec![parts[0].clone(), parts[0].clone(), parts[1].clone()]).unwrap_err();
+    assert!(e.to_string().contains("is also in"), "{e}");
+    let mut other = mixed_plan(250);
+    other.seed = 43;
+    other.shard = Some(Shard::new(1, 3).unwrap());
+    let mut mixed_parts = parts[..2].to_vec();
+    mixed_parts.push(("other".into(), run(other, mixed)));
+    let e = merge_probability(mixed_parts).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("cannot merge other: seed `43` differs"),
+        "{e}"
+    );
+    let e = merge_probability(vec![("whole".into(), whole.clone())]).unwrap_err();
+    assert!(e.to_string().contains("unsharded"), "{e}");
+    // a value that the seed does not give is refused
+    let text = whole.to_json();
+    let v = whole.points()[3].values[0];
+    let tampered = text.replacen(&format!("{v}"), "3.5", 1);
+    assert_ne!(tampered, text);
+    let e = Probability::from_json(&tampered).unwrap_err();
+    assert!(matches!(e, DesignError::ProbabilityJson(_)), "{e}");
+    assert!(e.to_string().contains("that seed 42 gives sample"), "{e}");
+}
+
+#[test]
+fn the_same_samples_on_any_thread_count_stopped_early_or_not() {
+    let on = |threads: usize, target: Option<f64>| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut p = mixed_plan(3000);
+            p.target_halfwidth = target;
+            run(p, mixed).to_json()
+        })
+    };
+    assert_eq!(on(1, None), on(4, None));
+    let (a, b) = (on(1, Some(0.04)), on(3, Some(0.04)));
+    assert_eq!(a, b);
+    let v: serde_json::Value = serde_json::from_str(&a).unwrap();
+    assert_eq!(v["stopping"]["rule"], "target_halfwidth");
+    let n = v["samples"].as_u64().unwrap();
+    assert!(n < 3000 && n.is_multiple_of(100), "{n}");
+    // a run stopped early holds exactly the first samples of the full run
+    let full: serde_json::Value = serde_json::from_str(&on(2, None)).unwrap();
+    assert_eq!(
+        v["points"].as_array().unwrap()[..],
+        full["points"].as_array().unwrap()[..n as usize]
+    );
+}
+
+#[test]
+fn bad_requests_are_refused_before_any_sample_runs() {
+    let e = Scatter::parse("surface.sigma_s=normal(1e-9,0)").unwrap_err();
+    assert!(
+        e.to_string().contains("surface.sigma_s") && e.to_string().contains("sd = 0"),
+        "{e}"
+    );
+    let e = Scatter::parse("sigma_s=lognormal(1,2)").unwrap_err();
+    assert!(e.to_string().contains("section.key"), "{e}");
+    let e = Scatter::parse("surface.sigma_s").unwrap_err();
+    assert!(e.to_string().contains("FIELD=DIST"), "{e}");
+    let bad = |f: &dyn Fn(&mut ProbabilityPlan), frag: &str| {
+        let mut p = plan(&["a.x=uniform(0,1)"], 10, 1);
+        f(&mut p);
+        let e = run_probability(p, spring(1.0), |_, _| panic!("no sample may run")).unwrap_err();
+        assert!(e.to_string().contains(frag), "{frag}: {e}");
+    };
+    bad(&|p| p.samples = 0, "samples = 0");
+    bad(&|p| p.confidence = 1.0, "confidence = 1");
+    bad(&|p| p.target_halfwidth = Some(0.0), "target half-width");
+    bad(
+        &|p| {
+            p.target_halfwidth = Some(0.1);
+            p.shard = Some(Shard::new(1, 2).unwrap());
+        },
+        "cannot stop a shard",
+    );
+    bad(
+        &|p| p.scatter.push(Scatter::parse("a.x=normal(0,1)").unwrap()),
+        "scattered twice",
+    );
+}

@@ -1,0 +1,492 @@
+//! `stiction design probability`: the fraction of devices that stick, and by which cycle,
+//! when design fields scatter from die to die (the model library's `probability`). User
+//! guide: `docs/design.md`, "How many switches stick".
+
+use super::switch::AccuracyArg;
+use super::{finish, preflight, Ctx, Outputs, SceneArgs};
+use crate::error::Error;
+use crate::output::OutputSet;
+use crate::plot::{svg, Panel, Series};
+use crate::progress::Bar;
+use crate::render::{self, Format, Render, Validity, Warning};
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use stiction_model::design::Labels;
+use stiction_model::keys::Kind;
+use stiction_model::probability::{self, Probability, ProbabilityRequest, ProbabilityResult};
+
+/// The files `design probability --out` and the merge of its parts write.
+pub const PROBABILITY_FILES: &[&str] = &["samples.csv", "probability.json", "probability.svg"];
+
+/// The output formats of `design probability`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ProbabilityFormat {
+    /// A table for people.
+    Table,
+    /// The statistics as pretty-printed JSON (samples, stiction_probability, ci_low,
+    /// ci_high, does_not_close_probability, outside_validity, by_cycle, ...), without the
+    /// samples (those are in probability.json and samples.csv).
+    Json,
+    /// Every sample, as samples.csv.
+    Csv,
+}
+
+/// `stiction design probability`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ProbabilityCommand {
+    /// The switch scene, `--set`, `--strict`.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// A scattered field and its distribution, FIELD=DIST, DIST one of normal(mean,sd),
+    /// lognormal(median,factor) (factor = exp(sigma)), uniform(lo,hi), weibull(scale,shape),
+    /// in the field's SI unit (repeatable; FIELD as in `design map`).
+    #[arg(long, value_name = "FIELD=DIST", required = true)]
+    pub scatter: Vec<String>,
+    /// A correlation between two scattered fields, A,B=RHO with RHO in (-1, 1): the
+    /// correlation of their normal scores (Gaussian copula; repeatable).
+    #[arg(long, value_name = "A,B=RHO", allow_hyphen_values = true)]
+    pub correlate: Vec<String>,
+    /// Samples to run (with --target-halfwidth, the most to run).
+    #[arg(long, value_name = "N")]
+    pub samples: usize,
+    /// Seed of the samples: sample i's values depend on (seed, i) alone.
+    #[arg(long, value_name = "K", default_value_t = 0)]
+    pub seed: u64,
+    /// Confidence of the intervals.
+    #[arg(long, default_value_t = 0.95)]
+    pub confidence: f64,
+    /// Run part K of N interleaved parts of the samples (sample i is in part i % N + 1);
+    /// needs --out; join the parts with `design merge`.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<String>,
+    /// Stop once half the width of the stiction interval is at most this (checked every
+    /// 100 samples); --samples caps the run.
+    #[arg(long, value_name = "H")]
+    pub target_halfwidth: Option<f64>,
+    /// Accuracy mode of the design points (replaces the scene's).
+    #[arg(long, value_enum)]
+    pub accuracy: Option<AccuracyArg>,
+    /// Skip the exact single-field answer (a threshold search of 10 to 40 design points).
+    #[arg(long)]
+    pub no_exact: bool,
+    /// Output format on standard output.
+    #[arg(long, value_enum, default_value_t = ProbabilityFormat::Table)]
+    pub format: ProbabilityFormat,
+    /// Write samples.csv, probability.json and probability.svg to this folder (replaced as
+    /// a whole; it may hold only those files).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+impl ProbabilityCommand {
+    /// Runs the samples (or one part of them).
+    pub fn execute(&self, ctx: Ctx) -> Result<String, Error> {
+        if self.shard.is_some() && self.out.is_none() {
+            return Err(Error::usage(
+                "--shard",
+                "a part is written to its own folder: give --out DIR (join the parts with `design merge`)",
+            ));
+        }
+        let loaded = self.scene.load(Kind::Switch, &[])?;
+        let request = ProbabilityRequest {
+            scatter: self.scatter.clone(),
+            correlate: self.correlate.clone(),
+            samples: self.samples,
+            seed: self.seed,
+            confidence: self.confidence,
+            shard: self.shard.clone(),
+            target_halfwidth: self.target_halfwidth,
+            accuracy: self.accuracy.map(Into::into),
+            exact: !self.no_exact,
+        };
+        // everything checked before the first sample runs, the output folder included
+        probability::plan(&loaded.scene, ctx.registry, &request).map_err(|e| loaded.blame(e))?;
+        preflight(self.out.as_deref(), PROBABILITY_FILES, None)?;
+        let r = probability::run(&loaded.scene, ctx.registry, &request, &Bar::new())
+            .map_err(|e| loaded.blame(e))?;
+        let report = ProbabilityReport::new(r);
+        let folder = match &self.out {
+            Some(dir) => Some(report.files(dir)?),
+            None => None,
+        };
+        let format = match self.format {
+            ProbabilityFormat::Table => Format::Table,
+            ProbabilityFormat::Json => Format::Json,
+            ProbabilityFormat::Csv => Format::Csv,
+        };
+        finish(
+            &report,
+            format,
+            false,
+            self.scene.strict,
+            Outputs {
+                folder,
+                plots: Vec::new(),
+            },
+        )
+    }
+}
+
+/// A probability run with its labels, for rendering and writing.
+#[derive(Debug, Clone)]
+pub struct ProbabilityReport {
+    /// The run.
+    pub run: Probability,
+    /// Units and title.
+    pub labels: Labels,
+    /// Guards the samples raised (printed on standard error).
+    pub warnings: Vec<Warning>,
+    /// Whether the model holds at every sample (a merge does not know).
+    pub validity: Option<Validity>,
+}
+
+impl Serialize for ProbabilityReport {
+    /// The statistics without the samples, with the validity when known.
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        #[derive(Serialize)]
+        struct Out<'a> {
+            #[serde(flatten)]
+            run: stiction_model::design_sweep::ProbabilityView<'a>,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            validity: Option<&'a Validity>,
+        }
+        Out {
+            run: self.run.view(false),
+            validity: self.validity.as_ref(),
+        }
+        .serialize(s)
+    }
+}
+
+impl ProbabilityReport {
+    /// The report of a computed run.
+    pub fn new(r: ProbabilityResult) -> Self {
+        Self {
+            run: r.probability,
+            labels: r.labels,
+            warnings: r.warnings,
+            validity: Some(r.validity),
+        }
+    }
+
+    /// The report of a merged run: labels from the run alone (so the plot is drawn
+    /// exactly as an unsharded run's).
+    pub fn merged(run: Probability) -> Self {
+        Self {
+            labels: labels(&run),
+            run,
+            warnings: Vec::new(),
+            validity: None,
+        }
+    }
+
+    /// The files, to be written to `dir` together.
+    pub fn files(&self, dir: &std::path::Path) -> Result<OutputSet, Error> {
+        let mut set = OutputSet::new(dir, PROBABILITY_FILES);
+        set.add("samples.csv", self.run.to_csv()?);
+        set.add("probability.json", self.run.to_json());
+        let plot = self.svg().map_err(|message| Error::Plot {
+            path: dir.join("probability.svg").display().to_string(),
+            message,
+        })?;
+        set.add("probability.svg", plot);
+        Ok(set)
+    }
+
+    /// probability.svg: P(stuck by cycle n) with its Clopper-Pearson band, and the exact
+    /// answer after accommodation when there is one. It depends on the run alone.
+    pub fn svg(&self) -> Result<String, String> {
+        let s = self.run.summary();
+        let cycles = self.run.plan().cycles;
+        let pct = pct(s.confidence);
+        let line = |f: &dyn Fn(&stiction_model::design_sweep::CycleProbability) -> f64| {
+            s.by_cycle
+                .iter()
+                .map(|c| (c.cycle as f64, f(c)))
+                .collect::<Vec<_>>()
+        };
+        let mut series = vec![
+            Series {
+                name: "P(stuck by cycle n)".into(),
+                points: line(&|c| c.probability),
+            },
+            Series {
+                name: format!("{pct} lower (Clopper-Pearson)"),
+                points: line(&|c| c.ci_low),
+            },
+            Series {
+                name: format!("{pct} upper (Clopper-Pearson)"),
+                points: line(&|c| c.ci_high),
+            },
+        ];
+        if let Some(p) = self.run.exact().and_then(|e| e.stiction_probability) {
+            series.push(Series {
+                name: "exact after accommodation (threshold + CDF)".into(),
+                points: vec![(1.0, p), (cycles as f64, p)],
+            });
+        }
+        let top = s
+            .by_cycle
+            .iter()
+            .map(|c| c.ci_high)
+            .fold(0.0f64, f64::max)
+            .max(
+                self.run
+                    .exact()
+                    .and_then(|e| e.stiction_probability)
+                    .unwrap_or(0.0),
+            );
+        let panel = Panel {
+            caption: format!(
+                "{} counted of {} samples; apart: {} outside validity, {} out of domain, {} failed",
+                s.denominator,
+                s.samples,
+                s.counts.outside_validity,
+                s.counts.out_of_domain,
+                s.counts.failed
+            ),
+            x_label: "cycle n".into(),
+            y_label: "P(stuck by cycle n)".into(),
+            series,
+            x_range: Some((1.0, (cycles as f64).max(2.0))),
+            y_range: Some((0.0, (1.1 * top).clamp(0.05, 1.0))),
+        };
+        let title = self.labels.title.clone().unwrap_or_else(|| {
+            format!(
+                "P(stuck by cycle n), {} ({} samples)",
+                self.run.plan().accuracy,
+                s.samples
+            )
+        });
+        svg(&title, &[panel])
+    }
+}
+
+/// The title and units of a run, from the run alone.
+fn labels(run: &Probability) -> Labels {
+    let mut l =
+        stiction_model::design::field_labels(run.plan().scatter.iter().map(|s| s.field.as_str()));
+    if let Some(t) = run.plan().scene.get("title").and_then(|t| t.as_str()) {
+        l = l.with_title(format!(
+            "{t}: P(stuck by cycle n) ({}, {} samples)",
+            run.plan().accuracy,
+            run.summary().samples
+        ));
+    }
+    l
+}
+
+/// `95 %` of a confidence of 0.95.
+fn pct(confidence: f64) -> String {
+    format!("{} %", (confidence * 1e4).round() / 1e2)
+}
+
+fn interval(p: Option<f64>, lo: f64, hi: f64) -> String {
+    match p {
+        Some(p) => format!("{p:.4} [{lo:.4}, {hi:.4}]"),
+        None => format!("- [{lo:.4}, {hi:.4}] (no counted sample)"),
+    }
+}
+
+impl Render for ProbabilityReport {
+    fn table(&self) -> String {
+        let s = self.run.summary();
+        let plan = self.run.plan();
+        let mut t = String::new();
+        let row = |t: &mut String, k: &str, v: String| {
+            let _ = writeln!(t, "{k:<16}{v}");
+        };
+        let value = |field: &str, v: f64| match self.labels.unit(field) {
+            Some(u) => format!("{} {u}", stiction_model::keys::num(v)),
+            None => stiction_model::keys::num(v),
+        };
+        for (j, sc) in plan.scatter.iter().enumerate() {
+            row(
+                &mut t,
+                if j == 0 { "scattered" } else { "" },
+                format!(
+                    "{} ~ {}{}",
+                    sc.field,
+                    sc.dist,
+                    self.labels
+                        .unit(&sc.field)
+                        .map(|u| format!(" [{u}]"))
+                        .unwrap_or_default()
+                ),
+            );
+        }
+        for c in &plan.correlations {
+            row(&mut t, "correlated", c.to_string());
+        }
+        row(
+            &mut t,
+            "samples",
+            format!(
+                "{} run of {} (seed {}{}), accuracy {}{}",
+                s.samples,
+                s.stopping.samples_requested,
+                plan.seed,
+                plan.shard
+                    .map(|k| format!(", part {k}"))
+                    .unwrap_or_default(),
+                plan.accuracy,
+                match (s.stopping.target_halfwidth, s.stopping.target_met) {
+                    (Some(h), Some(true)) =>
+                        format!("; stopped at half-width {:.4} <= {h}", s.stopping.halfwidth),
+                    (Some(h), _) => format!(
+                        "; target half-width {h} not met ({:.4})",
+                        s.stopping.halfwidth
+                    ),
+                    _ => String::new(),
+                }
+            ),
+        );
+        row(
+            &mut t,
+            "counted",
+            format!(
+                "{} (sticks {}, free {}, does not close {}); apart: outside validity {}, out of domain {}, failed {}",
+                s.denominator,
+                s.counts.sticks,
+                s.counts.free,
+                s.counts.does_not_close,
+                s.counts.outside_validity,
+                s.counts.out_of_domain,
+                s.counts.failed
+            ),
+        );
+        let pc = pct(s.confidence);
+        row(
+            &mut t,
+            "P(stiction)",
+            format!(
+                "{} after accommodation ({pc}, Clopper-Pearson)",
+                interval(s.stiction_probability, s.ci_low, s.ci_high)
+            ),
+        );
+        row(
+            &mut t,
+            "P(not closing)",
+            interval(
+                s.does_not_close_probability,
+                s.does_not_close.ci_low,
+                s.does_not_close.ci_high,
+            ),
+        );
+        if !s.by_cycle.is_empty() {
+            let cells: Vec<String> = s
+                .by_cycle
+                .iter()
+                .map(|c| format!("{}: {:.4}", c.cycle, c.probability))
+                .collect();
+            row(&mut t, "by cycle", cells.join(", "));
+        }
+        if let Some(e) = self.run.exact() {
+            let text = match (e.available, e.stiction_probability) {
+                (true, Some(p)) => {
+                    let at = match e.critical_value {
+                        Some(c) => format!(
+                            "F at {} = {}, free {}",
+                            e.field,
+                            value(&e.field, c),
+                            e.free_side
+                        ),
+                        None => format!("no crossing of ratio 1: free {}", e.free_side),
+                    };
+                    format!(
+                        "{p:.4} +- {:.1e} ({at}; ratio {} in the field, {} evaluations){}",
+                        e.uncertainty.unwrap_or(0.0),
+                        e.direction.as_deref().unwrap_or("monotone"),
+                        e.evaluations,
+                        match s.exact_inside_interval {
+                            Some(true) => "; inside the interval",
+                            Some(false) => "; OUTSIDE the interval",
+                            None => "",
+                        }
+                    )
+                }
+                _ => format!(
+                    "not available: {}",
+                    e.reason.as_deref().unwrap_or("unknown")
+                ),
+            };
+            row(&mut t, "exact", text);
+            if e.available && e.does_not_close_probability.is_some_and(|p| p > 0.0) {
+                row(
+                    &mut t,
+                    "exact no close",
+                    format!("{:.4}", e.does_not_close_probability.unwrap_or(0.0)),
+                );
+            }
+        }
+        let mut ranked: Vec<_> = s.rank_correlation.iter().collect();
+        ranked.sort_by(|a, b| {
+            b.spearman
+                .map(f64::abs)
+                .unwrap_or(-1.0)
+                .total_cmp(&a.spearman.map(f64::abs).unwrap_or(-1.0))
+        });
+        for (j, r) in ranked.iter().enumerate() {
+            let v = match (r.spearman, r.ci_low, r.ci_high) {
+                (Some(rho), Some(l), Some(h)) => {
+                    format!(
+                        "{}: Spearman rho = {rho:+.3} [{l:+.3}, {h:+.3}] with the ratio",
+                        r.field
+                    )
+                }
+                (Some(rho), _, _) => {
+                    format!("{}: Spearman rho = {rho:+.3} with the ratio", r.field)
+                }
+                _ => format!(
+                    "{}: undefined (fewer than 3 closing samples or one value)",
+                    r.field
+                ),
+            };
+            row(&mut t, if j == 0 { "drives failure" } else { "" }, v);
+        }
+        if s.counts.not_accommodated > 0 || s.counts.near_threshold > 0 {
+            row(
+                &mut t,
+                "note",
+                format!(
+                    "{} closing sample(s) reached the cycle cap ({}) before accommodating; {} within the accuracy mode's error of ratio 1",
+                    s.counts.not_accommodated, plan.cycles, s.counts.near_threshold
+                ),
+            );
+        }
+        if let Some(v) = self.validity.as_ref().filter(|v| !v.holds) {
+            row(
+                &mut t,
+                "validity",
+                format!(
+                    "{} of {} samples {} (counted apart)",
+                    s.counts.outside_validity,
+                    s.samples,
+                    v.words()
+                ),
+            );
+        }
+        t
+    }
+
+    fn csv(&self) -> String {
+        self.run.to_csv().unwrap_or_default()
+    }
+
+    fn render(&self, format: Format, _columns: bool) -> String {
+        match format {
+            Format::Json => render::json(self),
+            Format::Csv => self.csv(),
+            Format::Table => self.table(),
+        }
+    }
+
+    fn warnings(&self) -> &[Warning] {
+        &self.warnings
+    }
+
+    fn validity(&self) -> Option<&Validity> {
+        self.validity.as_ref()
+    }
+}
