@@ -445,6 +445,8 @@ fn par_map<T: Sync, R: Send>(items: &[T], threads: usize, f: impl Fn(&T) -> R + 
 /// each interval once computed.
 #[derive(Debug, Clone)]
 struct Sampled {
+    /// d = origin + x (d_min for a branch, 0 for the envelope).
+    origin: f64,
     x: Vec<f64>,
     p: Vec<f64>,
     mid: Vec<Option<f64>>,
@@ -459,11 +461,14 @@ struct Refine {
 }
 
 impl Sampled {
-    fn new(mut nodes: Vec<(f64, f64)>) -> Sampled {
+    /// Nodes in x = d - origin; two nodes whose d = origin + x round to the same number
+    /// are one (the first kept).
+    fn new(origin: f64, mut nodes: Vec<(f64, f64)>) -> Sampled {
         nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
-        nodes.dedup_by(|b, a| b.0 == a.0);
+        nodes.dedup_by(|b, a| origin + b.0 == origin + a.0);
         let n = nodes.len();
         Sampled {
+            origin,
             x: nodes.iter().map(|v| v.0).collect(),
             p: nodes.iter().map(|v| v.1).collect(),
             mid: vec![None; n.saturating_sub(1)],
@@ -474,10 +479,14 @@ impl Sampled {
         Steffen::new(&self.x, &self.p)
     }
 
-    /// Inserts a node (replacing one at the same abscissa).
+    /// Inserts a node (replacing one at the same d = origin + x, which keeps its x).
     fn insert(&mut self, x: f64, p: f64) {
-        let i = self.x.partition_point(|&v| v < x);
-        if i < self.x.len() && self.x[i] == x {
+        let mut i = self.x.partition_point(|&v| v < x);
+        let d = self.origin + x;
+        if i > 0 && self.origin + self.x[i - 1] == d {
+            i -= 1;
+        }
+        if i < self.x.len() && self.origin + self.x[i] == d {
             self.p[i] = p;
             if i > 0 {
                 self.mid[i - 1] = None;
@@ -775,7 +784,7 @@ fn build_branch<S: LawSource + ?Sized>(
                 nodes = kept;
             }
         }
-        let mut s = Sampled::new(nodes);
+        let mut s = Sampled::new(d_min, nodes);
         if path == Path::Retract {
             // the pull-out becomes a node; its d is then the node's d as the curve writes
             // it, d_min + x (the source's d can differ from it by rounding, and lie an ulp
@@ -810,8 +819,8 @@ fn build_branch<S: LawSource + ?Sized>(
         }
         curves.push(s);
     }
-    let retract = curves.pop().unwrap_or_else(|| Sampled::new(vec![]));
-    let approach = curves.pop().unwrap_or_else(|| Sampled::new(vec![]));
+    let retract = curves.pop().unwrap_or_else(|| Sampled::new(d_min, vec![]));
+    let approach = curves.pop().unwrap_or_else(|| Sampled::new(d_min, vec![]));
     Ok(Built {
         d_min,
         pull_out,
@@ -1235,7 +1244,7 @@ pub fn tabulate_with_progress<S: LawSource + Sync + ?Sized>(
     let n_int = built.len() - 1;
     let mut t = Table {
         built,
-        virgin: Sampled::new(nodes),
+        virgin: Sampled::new(0.0, nodes),
         checks: (0..n_int).map(|_| None).collect(),
         stuck: vec![false; n_int],
         top,
