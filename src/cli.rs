@@ -8,7 +8,8 @@
 
 use crate::commands::{
     asperity::AsperityCommand, calibrate::CalibrateCommand, design::DesignCommand, law::LawCommand,
-    md::MdCommand, print::SceneCommand, surface::SurfaceCommand, switch::SwitchCommand, Ctx,
+    md::MdCommand, print::SceneCommand, surface::SurfaceCommand, switch::SwitchCommand,
+    topography::TopographyCommand, Ctx,
 };
 use crate::error::Error;
 use crate::render;
@@ -54,6 +55,9 @@ pub enum Command {
     /// Stiction-free design: the critical value of a scene field, maps of the pull-out
     /// ratio, merge of map shards.
     Design(DesignCommand),
+    /// Greenwood-Williamson parameters (sigma_s, asperity density, radius) of a measured
+    /// height map, by spectral moments and by summits, with a [surface] scene fragment.
+    Topography(TopographyCommand),
 }
 
 /// Runs the CLI on `args` with the built-in laws and returns the exit status.
@@ -100,5 +104,6 @@ pub fn execute(command: Option<Command>, ctx: Ctx) -> Result<String, Error> {
         Command::Law(c) => c.execute(ctx),
         Command::Scene(c) => Ok(c.execute()),
         Command::Design(c) => c.execute(ctx),
+        Command::Topography(c) => c.execute(),
     }
 }

@@ -313,6 +313,7 @@ fn help_lists_the_built_subcommands() {
         "law",
         "scene",
         "design",
+        "topography",
     ];
     expected.sort();
     let mut got = listed.clone();

@@ -181,7 +181,7 @@ pub struct MapCommand {
     pub out: PathBuf,
     /// Run part K of N interleaved parts of the grid (K = 1..N; point i is in part
     /// i % N + 1); join the parts with `design merge`.
-    #[arg(long, value_name = "K/N")]
+    #[arg(long, value_name = "K/N", allow_hyphen_values = true)]
     pub shard: Option<String>,
     /// Accuracy mode (replaces the scene's).
     #[arg(long, value_enum)]

@@ -2,7 +2,7 @@
 
 use super::argument_error;
 use crate::error::Error;
-use crate::render::{Format, Render};
+use crate::render::{csv_num, Format, Render};
 use std::fmt::Write as _;
 use stiction_model::contact_core::Path;
 use stiction_model::maugis_kim;
@@ -121,7 +121,12 @@ impl Render for MdResult {
             let _ = writeln!(
                 s,
                 "{},{},{},{},{},{}",
-                p.delta, p.force, p.a, p.c, branch, p.stable
+                csv_num(p.delta),
+                csv_num(p.force),
+                csv_num(p.a),
+                csv_num(p.c),
+                branch,
+                p.stable
             );
         }
         s
@@ -138,7 +143,10 @@ impl Render for MdPointResult {
     fn csv(&self) -> String {
         format!(
             "lambda,delta,path,force\n{},{},{},{}\n",
-            self.lambda, self.delta, self.path, self.force
+            csv_num(self.lambda),
+            csv_num(self.delta),
+            self.path,
+            csv_num(self.force)
         )
     }
 }

@@ -10,6 +10,7 @@ pub mod md;
 pub mod print;
 pub mod surface;
 pub mod switch;
+pub mod topography;
 
 use crate::error::Error;
 use crate::output::{self, OutputSet};
@@ -102,25 +103,25 @@ impl Loaded {
     }
 }
 
-/// The option a library argument came from, for messages (`vary` -> `--vary`).
+/// The option a library argument came from, for messages (`vary` -> `--vary`), also when
+/// the argument's error is reported in a scene.
 pub fn argument_error(e: ModelError) -> Error {
     use stiction_model::design_sweep::DesignError;
-    match e {
-        ModelError::Design(DesignError::Axis { option, reason }) => {
-            Error::usage("--vary", format!("`{option}`: {reason}"))
-        }
-        ModelError::Design(DesignError::Shard { option, reason }) => {
-            Error::usage("--shard", format!("`{option}`: {reason}"))
-        }
+    let option = |name: &str| format!("--{}", name.replace('_', "-"));
+    match e.cause() {
         ModelError::Argument {
             name,
             value,
             allowed,
-        } => Error::usage(
-            &format!("--{}", name.replace('_', "-")),
-            format!("{value}: must be {allowed}"),
-        ),
-        e => e.into(),
+        } => Error::usage(&option(name), format!("{value}: must be {allowed}")),
+        ModelError::Option { name, message } => Error::usage(&option(name), message.clone()),
+        ModelError::Design(DesignError::Axis { option, reason }) => {
+            Error::usage(&format!("--vary `{option}`"), reason.clone())
+        }
+        ModelError::Design(DesignError::Shard { option, reason }) => {
+            Error::usage(&format!("--shard `{option}`"), reason.clone())
+        }
+        _ => e.into(),
     }
 }
 

@@ -360,6 +360,15 @@ pub fn laws_line(l: &stiction_model::switch::Laws) -> String {
     )
 }
 
+/// A pull-out ratio for tables: four decimals, scientific notation beyond 1e4.
+fn ratio_text(r: f64) -> String {
+    if r.abs() >= 1e4 {
+        format!("{r:.4e}")
+    } else {
+        format!("{r:.4}")
+    }
+}
+
 /// Title, laws and accuracy, drive, restoring pressure.
 fn table_header(r: &SwitchResult) -> String {
     let mut s = String::new();
@@ -435,12 +444,12 @@ fn table_cycles(r: &SwitchResult) -> String {
         };
         let _ = writeln!(
             s,
-            "{:>8} {:>12} {:>14} {:>12} {:>8.4} {:>10}{note}",
+            "{:>8} {:>12} {:>14} {:>12} {:>8} {:>10}{note}",
             c.cycle,
             render::si(c.d_e, "m", 6),
             render::pressure(c.pull_out_pressure),
             change,
-            c.pull_out_ratio,
+            ratio_text(c.pull_out_ratio),
             if c.sticks { "sticks" } else { "releases" }
         );
         prev = Some(c.pull_out_pressure);
@@ -487,13 +496,13 @@ fn table_verdict(r: &SwitchResult) -> String {
     }
     let _ = writeln!(
         s,
-        "verdict: {} (pull-out ratio {:.4}: largest pull-out {} x {} of the area vs restoring {}){}",
+        "verdict: {} (pull-out ratio {}: largest pull-out {} x {} of the area vs restoring {}){}",
         if r.stiction {
             "STICTION - the spring cannot pull the switch open"
         } else {
             "no stiction - the spring opens the switch"
         },
-        r.pull_out_ratio,
+        ratio_text(r.pull_out_ratio),
         render::pressure(r.largest_pull_out),
         r.contact_area_fraction,
         render::pressure(r.restoring_pressure),

@@ -13,6 +13,7 @@ pub const FIT_RANGE_MAX: f64 = 110.0;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[non_exhaustive]
 pub enum YieldModulus {
     /// The Hertz composite modulus E* (Kogut-Etsion, Brizmer): keeps eq 3 equal to the
     /// Hertz force at delta_CP.

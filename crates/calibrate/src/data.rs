@@ -1,8 +1,8 @@
 //! Finite-element force-interference curves of one asperity, read from CSV.
 
+pub use crate::branch::Branch;
 use crate::error::{CalibError, DataProblem};
-use serde::{Deserialize, Serialize};
-use std::fmt;
+use serde::Serialize;
 use std::fmt::Write as _;
 
 /// The four required columns, SI units.
@@ -10,33 +10,6 @@ pub const COLUMNS: [&str; 4] = ["delta_max_m", "delta_m", "force_n", "branch"];
 
 /// Relative tolerance on delta <= delta_max (rounding in the finite-element export).
 pub const DELTA_MAX_TOLERANCE: f64 = 1e-9;
-
-/// Which branch of the loading cycle a point belongs to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Branch {
-    /// The virgin loading from far away to delta_max: at each point the asperity has been
-    /// loaded to that point (history delta_max = delta).
-    Loading,
-    /// The retraction from delta_max.
-    Unloading,
-}
-
-impl Branch {
-    /// The CSV spelling: `loading` or `unloading`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Branch::Loading => "loading",
-            Branch::Unloading => "unloading",
-        }
-    }
-}
-
-impl fmt::Display for Branch {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
 
 /// One data point.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -486,7 +459,7 @@ mod tests {
             (
                 format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,1e-8,1,loading,7\n"),
                 3,
-                "column 5",
+                "5",
             ),
             (
                 format!("{HEADER}2e-8,1e-8,1,loading\n2e-8,2.1e-8,1,loading\n"),

@@ -1,4 +1,4 @@
-use crate::data::Branch;
+use crate::branch::Branch;
 use asperity_plastic::PlasticError;
 use contact_core::LawError;
 use std::fmt;
@@ -6,6 +6,7 @@ use thiserror::Error;
 
 /// Errors of the `calibrate` crate.
 #[derive(Debug, Error)]
+#[non_exhaustive]
 pub enum CalibError {
     /// Bad finite-element data, located by its line (1-based, in the file) and column.
     #[error("line {line}, column {column}: {problem}")]

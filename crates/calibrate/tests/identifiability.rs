@@ -65,7 +65,7 @@ fn one_delta_max_leaves_b1_b2_b3_undetermined() {
         );
         let table = rep.to_table();
         assert!(
-            table.contains("not determined by the data") && table.contains("--fit a1,a2,a3,b1"),
+            table.contains("not determined by the data") && table.contains("such as a1,a2,a3,b1"),
             "{table}"
         );
     }

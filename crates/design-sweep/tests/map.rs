@@ -139,7 +139,7 @@ fn failing_points_get_a_status_and_the_map_completes() {
     // CSV: status words, empty cells for the failed point, no detail
     let csv = map.to_csv().unwrap();
     let row500 = csv.lines().find(|l| l.starts_with("5e2,")).unwrap();
-    assert_eq!(row500, "5e2,,,,,,,,failed");
+    assert_eq!(row500, "5e2,,,,,,,,,,failed");
     assert!(!csv.contains("converge"));
     // JSON: detail present, no null anywhere
     let j = map.to_json();
@@ -173,9 +173,9 @@ fn csv_header_and_rows_are_exact() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "switch.k_s,surface.sigma_s,pull_out_ratio,largest_pull_out_pa,restoring_pressure_pa,cycles_to_accommodation,first_sticking_cycle,sticks,closes,status"
+        "switch.k_s,surface.sigma_s,pull_out_ratio,largest_pull_out_pa,restoring_pressure_pa,cycles_to_accommodation,first_sticking_cycle,sticks,closes,validity_holds,accommodation_cause,status"
     );
-    assert_eq!(CSV_COLUMNS.len(), 8);
+    assert_eq!(CSV_COLUMNS.len(), 10);
     let rows: Vec<&str> = lines.collect();
     assert_eq!(rows.len(), 13 * 7);
     // first row: x = 300, y = 1e-9 -> ratio (2e3/300)^2 = 44.44..., sticks
@@ -188,7 +188,7 @@ fn csv_header_and_rows_are_exact() {
         map.points()[0].design.unwrap().pull_out_ratio,
         "round trip"
     );
-    assert_eq!(&cells[5..], ["3", "1", "true", "true", "ok"]);
+    assert_eq!(&cells[5..], ["3", "1", "true", "true", "true", "", "ok"]);
     // every number parses back bit for bit
     for (row, p) in rows.iter().zip(map.points()) {
         let c: Vec<&str> = row.split(',').collect();

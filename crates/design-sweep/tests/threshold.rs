@@ -65,7 +65,8 @@ fn no_crossing_is_an_answer_not_an_error() {
     assert_eq!(t.evaluations, t.scan.len());
     let v: Value = serde_json::from_str(&t.to_json()).unwrap();
     assert_eq!(v["free_side"], "whole_range");
-    assert!(v.get("critical_value").is_none());
+    // no crossing: critical_value is null (a public contract), and no closure boundary
+    assert!(v["critical_value"].is_null() && v["closure_boundary"].is_null());
     assert!(v["ratio_at_from"].as_f64().unwrap() < 1.0);
     let t = threshold("switch.k_s", 10.0, 100.0, power(3e3, 2.0), &opts(1e-6)).unwrap();
     assert_eq!(t.free_side, FreeSide::Nowhere);
@@ -110,7 +111,9 @@ fn reports_two_crossings() {
         assert!(v.get(key).is_some(), "{key}");
     }
     assert_eq!(v["crossings"].as_array().unwrap().len(), 2);
-    assert!(!t.to_json().contains("null"));
+    // the one null: no closure boundary (the switch closes everywhere)
+    assert_eq!(t.to_json().matches("null").count(), 1);
+    assert!(v["closure_boundary"].is_null());
     let table = threshold_table(&t, &Labels::new().with_unit("switch.k_s", "Pa/m"));
     assert!(
         table.contains("crossings (2)") && table.contains("Pa/m"),
@@ -119,8 +122,9 @@ fn reports_two_crossings() {
 }
 
 #[test]
-fn a_jump_from_not_closing_to_sticking_is_located_by_bisection() {
-    // below 2.5e3 the switch closes and sticks with ratio 1.8; above it does not close
+fn where_the_switch_stops_closing_is_a_closure_boundary_never_a_free_side() {
+    // below 2.5e3 the switch closes and sticks with ratio 1.8; above it does not close: no
+    // closing design is free, and the boundary is where it stops closing (issue 22)
     let f = |x: f64| -> Result<DesignPoint, PointError> {
         if x > 2.5e3 {
             Ok(DesignPoint::does_not_close(x))
@@ -129,21 +133,43 @@ fn a_jump_from_not_closing_to_sticking_is_located_by_bisection() {
         }
     };
     let t = threshold("switch.voltage", 1e3, 1e4, f, &opts(1e-6)).unwrap();
-    assert_eq!(t.crossings.len(), 1);
-    let c = &t.crossings[0];
-    assert_eq!(c.kind, CrossingKind::Jump);
-    assert_eq!(c.free_side, FreeSide::Above);
-    assert!(c.bracket[0] <= 2.5e3 && 2.5e3 <= c.bracket[1]);
+    assert!(t.crossings.is_empty(), "{:?}", t.crossings);
+    assert_eq!(t.critical_value, None);
+    assert_eq!(t.free_side, FreeSide::Nowhere);
+    assert_eq!(t.closure_boundaries.len(), 1);
+    let b = &t.closure_boundaries[0];
+    assert_eq!(b.closes_side, FreeSide::Below);
+    assert_eq!(t.closure_boundary, Some(b.value));
+    assert!(b.bracket[0] <= 2.5e3 && 2.5e3 <= b.bracket[1]);
     assert!(
-        (c.bracket[1] / c.bracket[0] - 1.0) <= 1.01e-6,
+        (b.bracket[1] / b.bracket[0] - 1.0) <= 1.01e-6,
         "{:?}",
-        c.bracket
+        b.bracket
     );
-    assert!((c.critical_value - 2.5e3).abs() <= c.uncertainty);
-    assert!((c.ratio_at_bracket[0] - 1.8).abs() < 1e-12 && c.ratio_at_bracket[1] == 0.0);
-    assert!(c.slope.is_none());
+    assert!((b.value - 2.5e3).abs() <= b.uncertainty);
     // bisection from a 1/8-decade scan bracket to 1e-6 in ln: about 18 halvings
-    assert!(c.evaluations <= 22, "{}", c.evaluations);
+    assert!(b.evaluations <= 22, "{}", b.evaluations);
+    let v: Value = serde_json::from_str(&t.to_json()).unwrap();
+    assert!(v["critical_value"].is_null());
+    assert!((v["closure_boundary"].as_f64().unwrap() - 2.5e3).abs() <= b.uncertainty);
+    let table = threshold_table(&t, &Labels::new());
+    assert!(
+        table.contains("no closing design is free") && table.contains("stops closing"),
+        "{table}"
+    );
+
+    // free where it closes: ratio 0.5 below, does not close above
+    let h = |x: f64| -> Result<DesignPoint, PointError> {
+        if x > 2.5e3 {
+            Ok(DesignPoint::does_not_close(x))
+        } else {
+            Ok(point(0.5, x))
+        }
+    };
+    let t = threshold("switch.voltage", 1e3, 1e4, h, &opts(1e-6)).unwrap();
+    assert_eq!(t.free_side, FreeSide::WhereItCloses);
+    assert_eq!(t.critical_value, None);
+    assert!(t.closure_boundary.is_some());
 
     // a finite jump (0.5 -> 2) is a jump too, found to the tolerance
     let g = |x: f64| -> Result<DesignPoint, PointError> {
@@ -185,7 +211,8 @@ fn failing_scan_points_are_reported_and_the_scan_goes_on() {
     assert!(failed.iter().any(|p| p.status == "out_of_domain"));
     assert_eq!(t.ratio_at_to, None);
     let json = t.to_json();
-    assert!(json.contains("too stiff") && !json.contains("null"));
+    // the one null: no closure boundary
+    assert!(json.contains("too stiff") && json.matches("null").count() == 1);
     assert!(threshold_table(&t, &Labels::new()).contains("failed scan points (3)"));
 }
 
@@ -210,7 +237,8 @@ fn a_failure_while_refining_leaves_an_unresolved_crossing() {
 fn invalid_input_and_all_failed_scans_are_errors() {
     let f = power(1.0, 1.0);
     let bad = |r: Result<_, DesignError>| r.unwrap_err().to_string();
-    assert!(bad(threshold("switch.k_s", 1.0, 1.0, &f, &opts(1e-6))).contains("both 1"));
+    assert!(bad(threshold("switch.k_s", 1.0, 1.0, &f, &opts(1e-6)))
+        .contains("both ends of the range are 1e0"));
     assert!(bad(threshold("switch.k_s", 1.0, f64::NAN, &f, &opts(1e-6))).contains("finite"));
     assert!(bad(threshold("switch.k_s", 1.0, 2.0, &f, &opts(0.0))).contains("tolerance"));
     assert!(bad(threshold("k_s", 1.0, 2.0, &f, &opts(1e-6))).contains("section.key"));

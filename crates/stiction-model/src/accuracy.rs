@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 /// A speed/accuracy trade, named by its targets (see [`Targets`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum Accuracy {
     /// d_e within 1e-9 sigma_s, pull-out within 1e-8 (relative).
     #[default]

@@ -112,34 +112,43 @@ impl<'a> Evaluator<'a> {
     /// than the asperities push back), are `OutOfDomain`; the others `Failed`.
     pub fn point(&self, values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
         let r = self.result(values)?;
-        if !r.warnings.is_empty() {
-            let at = values
-                .iter()
-                .map(|(k, v)| format!("{k} = {}", num(*v)))
-                .collect::<Vec<_>>()
-                .join(", ");
-            if let Ok(mut g) = self.guards.lock() {
-                // each code once per point: a count never exceeds the points
-                let mut seen: Vec<&'static str> = Vec::new();
-                for w in &r.warnings {
-                    if seen.contains(&w.code) {
-                        continue;
-                    }
-                    seen.push(w.code);
-                    g.entry(w.code)
-                        .and_modify(|t| {
-                            t.points += 1;
-                            t.breaks_validity |= w.breaks_validity;
-                        })
-                        .or_insert_with(|| GuardTally {
-                            points: 1,
-                            example: format!("at {at}: {}", w.message),
-                            breaks_validity: w.breaks_validity,
-                        });
+        self.record(values, &r.warnings);
+        Ok(design_point(&r))
+    }
+
+    /// Adds the guards one point raised (`values`: its fields and values) to the tally
+    /// that [`Evaluator::warnings`] reports, as [`Evaluator::point`] does for the points it
+    /// runs. For a front end that runs the points elsewhere ([`Evaluator::result`] and
+    /// [`design_point`] on the workers of a cluster) and collects their warnings here.
+    pub fn record(&self, values: &[(&str, f64)], warnings: &[Warning]) {
+        if warnings.is_empty() {
+            return;
+        }
+        let at = values
+            .iter()
+            .map(|(k, v)| format!("{k} = {}", num(*v)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        if let Ok(mut g) = self.guards.lock() {
+            // each code once per point: a count never exceeds the points
+            let mut seen: Vec<&'static str> = Vec::new();
+            for w in warnings {
+                if seen.contains(&w.code) {
+                    continue;
                 }
+                seen.push(w.code);
+                g.entry(w.code)
+                    .and_modify(|t| {
+                        t.points += 1;
+                        t.breaks_validity |= w.breaks_validity;
+                    })
+                    .or_insert_with(|| GuardTally {
+                        points: 1,
+                        example: format!("at {at}: {}", w.message),
+                        breaks_validity: w.breaks_validity,
+                    });
             }
         }
-        Ok(design_point(&r))
     }
 
     /// The guards raised so far, one warning per kind with the number of points that
@@ -207,29 +216,43 @@ pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, Model
             .collect::<Vec<_>>()
             .join(", ")
     };
-    let fail = |why: String| Err(ModelError::argument("vary", field, why));
+    let fail = |message: String| {
+        Err(ModelError::Option {
+            name: "vary".into(),
+            message,
+        })
+    };
     let Some(f) = keys::key(field).filter(|f| variable(f)) else {
         let why = match keys::key(field) {
             Some(f) if !f.key.contains('.') => format!(
-                "a design field: `{field}` is a top-level setting of the scene (set it in the scene file); the fields that can be varied are: {}",
-                list()
+                "`{field}` is a top-level setting of the scene, not a design field (set it in the scene file)"
             ),
-            Some(_) => format!(
-                "a numeric key of a switch scene; the fields that can be varied are: {}",
-                list()
-            ),
-            None => format!(
-                "a known field; the fields that can be varied are: {}",
-                list()
-            ),
+            Some(_) => format!("`{field}` is not a numeric key of a switch scene"),
+            None => format!("unknown field `{field}`"),
         };
-        return fail(why);
+        return fail(format!(
+            "{why}; the fields that can be varied are: {}",
+            list()
+        ));
     };
     let spring = matches!(base.switch.drive, Drive::Spring { .. });
+    let per_length = base.switch.spring_constant.is_some();
     match field {
+        "switch.k_s" if per_length => {
+            return fail(
+                "switch.k_s conflicts with the scene's drive: it gives switch.spring_constant over switch.electrode_area; vary switch.spring_constant (or give k_s instead)"
+                    .into(),
+            )
+        }
+        "switch.spring_constant" if !per_length => {
+            return fail(
+                "switch.spring_constant conflicts with the scene's drive: give `spring_constant = <N/m>` with `electrode_area = <m^2>` instead of k_s or impact_energy in [switch] to vary it, or vary switch.k_s"
+                    .into(),
+            )
+        }
         "switch.k_s" | "switch.voltage" if !spring => {
             return fail(format!(
-                "a field that fits the scene's drive: it gives switch.impact_energy, from which K_s is derived (at U = V_PI); give `k_s = <Pa/m>` instead of `impact_energy` in [switch] to vary {field}{}",
+                "{field} conflicts with the scene's drive: it gives switch.impact_energy, from which K_s is derived (at U = V_PI); give `k_s = <Pa/m>` instead of `impact_energy` in [switch] to vary {field}{}",
                 if field == "switch.k_s" {
                     ", or vary switch.impact_energy"
                 } else {
@@ -239,7 +262,7 @@ pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, Model
         }
         "switch.impact_energy" if spring => {
             return fail(
-                "a field that fits the scene's drive: it gives switch.k_s, from which E_I is derived (with the voltage); vary switch.k_s or switch.voltage, or give `impact_energy = <J/m^2>` instead of `k_s` (and no `voltage`) in [switch]"
+                "switch.impact_energy conflicts with the scene's drive: it gives switch.k_s, from which E_I is derived (with the voltage); vary switch.k_s or switch.voltage, or give `impact_energy = <J/m^2>` instead of `k_s` (and no `voltage`) in [switch]"
                     .into(),
             )
         }
@@ -249,7 +272,7 @@ pub fn check_field(field: &str, base: &SwitchSpec) -> Result<&'static Key, Model
             if !matches!(base.contact.counter, crate::spec::Counter::Material { .. }) =>
         {
             return fail(format!(
-                "a field of this scene: {field} applies only to a counter-surface of another material: give `counter = \"material\"` with counter_youngs_modulus and counter_poisson_ratio in [contact], or vary contact.youngs_modulus"
+                "{field} applies only to a counter-surface of another material: give `counter = \"material\"` with counter_youngs_modulus and counter_poisson_ratio in [contact], or vary contact.youngs_modulus"
             ))
         }
         _ => {}
@@ -444,4 +467,32 @@ pub fn map(
         map,
         warnings,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::guards::code;
+
+    #[test]
+    fn recorded_warnings_are_tallied_once_per_point() {
+        let registry = LawRegistry::builtin();
+        let ev = Evaluator::new(Scene::paper(Kind::Switch), &registry);
+        let w = Warning::invalid(code::BEYOND_FIT_RANGE, "most of the load".into());
+        // a code raised twice by one point counts once
+        ev.record(&[("surface.sigma_s", 2e-9)], &[w.clone(), w.clone()]);
+        ev.record(&[("surface.sigma_s", 4e-9)], &[w]);
+        ev.record(&[("surface.sigma_s", 8e-9)], &[]);
+        let tally = ev.warnings(3);
+        assert_eq!(tally.len(), 1);
+        assert_eq!(tally[0].code, code::BEYOND_FIT_RANGE);
+        assert!(tally[0].breaks_validity);
+        assert_eq!(
+            tally[0].message,
+            format!(
+                "2 of 3 design points raised it; e.g. at surface.sigma_s = {}: most of the load",
+                num(2e-9)
+            )
+        );
+    }
 }

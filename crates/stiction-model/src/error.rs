@@ -133,6 +133,15 @@ pub enum ModelError {
         /// What is allowed.
         allowed: String,
     },
+    /// An argument of a run that cannot be used, with what to give instead (`vary`: an
+    /// unknown field, a field in conflict with the scene's drive).
+    #[error("invalid {name}: {message}")]
+    Option {
+        /// The argument's name in the library.
+        name: String,
+        /// What is wrong and what to give.
+        message: String,
+    },
     /// A law registered twice, or a law entry that is not usable.
     #[error("law registry: {0}")]
     Registry(String),
@@ -163,6 +172,10 @@ pub enum ModelError {
     /// `calibrate`.
     #[error(transparent)]
     Calibrate(#[from] calibrate::CalibError),
+    /// `topography`: a height map that cannot be read or analysed (always bad input: the
+    /// crate refuses what it cannot use and says why).
+    #[error(transparent)]
+    Topography(#[from] topography::TopographyError),
     /// An error while running a scene, with the scene's file.
     #[error("{file}: {source}")]
     InScene {
@@ -220,9 +233,10 @@ impl Categorized for ModelError {
     /// category (a law's parameter it refuses is input, a solver's failure numerical).
     fn category(&self) -> Category {
         match self {
-            ModelError::Scene(_) | ModelError::Argument { .. } | ModelError::Registry(_) => {
-                Category::Input
-            }
+            ModelError::Scene(_)
+            | ModelError::Argument { .. }
+            | ModelError::Option { .. }
+            | ModelError::Registry(_) => Category::Input,
             ModelError::Core(e) => e.category(),
             ModelError::MaugisKim(e) => e.category(),
             ModelError::Plastic(e) => e.category(),
@@ -238,6 +252,7 @@ impl Categorized for ModelError {
                 }
             }
             ModelError::Calibrate(e) => e.category(),
+            ModelError::Topography(_) => Category::Input,
             ModelError::InScene { source, .. } => source.category(),
         }
     }

@@ -182,6 +182,8 @@ pub enum Default {
     Required,
     /// Optional, and its absence means something of its own (the help says what).
     Absent,
+    /// Required when another key has a given value (the condition, as a scene writes it).
+    RequiredWhen(&'static str),
     /// This number (SI).
     Number(f64),
     /// This count.
@@ -200,7 +202,7 @@ impl Default {
     /// The default as a scene would write it (None for `Required` and `Absent`).
     pub fn as_written(&self) -> Option<String> {
         match *self {
-            Default::Required | Default::Absent => None,
+            Default::Required | Default::Absent | Default::RequiredWhen(_) => None,
             Default::Number(v) => Some(toml_number(v)),
             Default::Count(n) => Some(n.to_string()),
             Default::Word(w) => Some(format!("\"{w}\"")),
@@ -275,8 +277,8 @@ pub const KEYS: &[Key] = &[
     Key { key: "contact.work_of_adhesion", unit: "J/m^2", domain: Domain::range(1e-6, 100.0), default: Default::Required, help: "work of adhesion w", scenes: ALL },
     Key { key: "contact.z0", unit: "m", domain: Domain::range(1e-12, 1e-6), default: Default::Required, help: "Dugdale range z0 (sigma0 = w/z0)", scenes: ALL },
     Key { key: "contact.counter", unit: "", domain: Domain::Choice(COUNTERS), default: Default::Required, help: "counter-surface: rigid, same (the same film), or material (give the counter_* keys)", scenes: ALL },
-    Key { key: "contact.counter_youngs_modulus", unit: "Pa", domain: Domain::range(1e6, 1e13), default: Default::Absent, help: "counter-surface E, required with counter = \"material\"", scenes: ALL },
-    Key { key: "contact.counter_poisson_ratio", unit: "-", domain: POISSON, default: Default::Absent, help: "counter-surface nu, required with counter = \"material\"", scenes: ALL },
+    Key { key: "contact.counter_youngs_modulus", unit: "Pa", domain: Domain::range(1e6, 1e13), default: Default::RequiredWhen("counter = \"material\""), help: "counter-surface E, required with counter = \"material\"", scenes: ALL },
+    Key { key: "contact.counter_poisson_ratio", unit: "-", domain: POISSON, default: Default::RequiredWhen("counter = \"material\""), help: "counter-surface nu, required with counter = \"material\"", scenes: ALL },
     Key { key: "contact.counter_yield_stress", unit: "Pa", domain: Domain::RangeOrInfinite { lo: 1e3 }, default: Default::Number(f64::INFINITY), help: "counter-surface S_Y, with counter = \"material\"; the body that yields first (smaller delta_CP) governs plasticity", scenes: ALL },
     Key { key: "contact.adhesion_law", unit: "", domain: Domain::Law, default: Default::Word("maugis_kim"), help: "adhesion law of one asperity (built in: maugis_kim, jkr, dmt, hertz); its own parameters in [contact.adhesion]", scenes: ALL },
     Key { key: "contact.plasticity_law", unit: "", domain: Domain::Law, default: Default::Word("etsion_kadin"), help: "plasticity law of one asperity (built in: etsion_kadin, kogut_etsion, elastic); its own parameters in [contact.plasticity]", scenes: ALL },
@@ -302,9 +304,11 @@ pub const KEYS: &[Key] = &[
     Key { key: "switch.epsilon_0", unit: "F/m", domain: Domain::range(1e-12, 1e-10), default: Default::Number(8.854e-12), help: "vacuum permittivity", scenes: SWITCH },
     Key { key: "switch.film_thickness", unit: "m", domain: Domain::range(1e-10, 1e-3), default: Default::Required, help: "film thickness t_s of eq 17", scenes: SWITCH },
     Key { key: "switch.film_youngs_modulus", unit: "Pa", domain: Domain::range(1e6, 1e13), default: Default::Key("contact.youngs_modulus"), help: "Young's modulus of the film in eq 17 (default: the contact material's)", scenes: SWITCH },
-    Key { key: "switch.impact_energy", unit: "J/m^2", domain: Domain::range(1e-9, 100.0), default: Default::Absent, help: "drive A: impact energy E_I per electrode area; K_s is derived so that release at U = V_PI gives it", scenes: SWITCH },
+    Key { key: "switch.impact_energy", unit: "J/m^2", domain: Domain::range(1e-9, 100.0), default: Default::RequiredWhen("neither k_s nor spring_constant"), help: "drive A: impact energy E_I per electrode area; K_s is derived so that release at U = V_PI gives it", scenes: SWITCH },
     Key { key: "switch.k_s", unit: "Pa/m", domain: Domain::above(0.0, 1e20), default: Default::Absent, help: "drive B: spring stiffness per unit area K_s (instead of impact_energy); E_I is derived", scenes: SWITCH },
     Key { key: "switch.voltage", unit: "V", domain: Domain::above(0.0, 1e5), default: Default::Absent, help: "with k_s: the step voltage U (default V_PI); below the dynamic pull-in the switch does not close", scenes: SWITCH },
+    Key { key: "switch.spring_constant", unit: "N/m", domain: Domain::above(0.0, 1e6), default: Default::Absent, help: "drive B as a spring constant: K_s = spring_constant / electrode_area (instead of k_s; give electrode_area)", scenes: SWITCH },
+    Key { key: "switch.electrode_area", unit: "m^2", domain: Domain::range(1e-14, 1e-2), default: Default::Absent, help: "area of the movable electrode (needed with spring_constant, and for forces and contact resistances)", scenes: SWITCH },
     Key { key: "switch.contact_area_fraction", unit: "-", domain: Domain::above(0.0, 1.0), default: Default::Number(1.0), help: "fraction phi of the electrode area that meets the substrate (contact dimples): it absorbs E_I/phi per contact area and adheres on phi of the area", scenes: SWITCH },
 ];
 
@@ -354,9 +358,10 @@ pub fn markdown_table() -> String {
             f.key,
             f.unit,
             f.domain.describe(),
-            f.default
-                .as_written()
-                .map_or("-".to_string(), |d| format!("`{d}`")),
+            match f.default {
+                Default::RequiredWhen(c) => format!("required with `{c}`"),
+                d => d.as_written().map_or("-".to_string(), |d| format!("`{d}`")),
+            },
             scenes.join(", ")
         );
     }
@@ -403,7 +408,7 @@ mod tests {
                         k.key
                     );
                 }
-                (Default::Required | Default::Absent, _) => {}
+                (Default::Required | Default::Absent | Default::RequiredWhen(_), _) => {}
             }
         }
     }

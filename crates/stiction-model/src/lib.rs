@@ -53,6 +53,7 @@ pub mod scenegen;
 pub mod spec;
 pub mod surface;
 pub mod switch;
+pub mod topography;
 
 pub use accuracy::{Accuracy, Targets};
 pub use error::{ModelError, SceneError};

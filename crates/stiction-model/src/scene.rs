@@ -51,7 +51,7 @@ impl Scene {
         }
         let tree: toml::Table = toml::from_str(text).map_err(|e| SceneError::Parse {
             file: file.into(),
-            message: e.to_string().trim_end().to_string(),
+            message: short_lines(e.to_string().trim_end()),
         })?;
         Ok(Self {
             file: file.into(),
@@ -69,7 +69,7 @@ impl Scene {
         }
         let v: serde_json::Value = serde_json::from_str(text).map_err(|e| SceneError::Parse {
             file: file.into(),
-            message: format!("JSON parse error: {e}"),
+            message: short_lines(&format!("JSON parse error: {e}")),
         })?;
         let mut s = Self::from_json_value(file, &v)?;
         s.text = Some(text.to_string());
@@ -303,6 +303,23 @@ impl Scene {
         }
         node.get(parts[parts.len() - 1])
     }
+}
+
+/// A parser's message with every line cut to 160 characters: a message quotes the line at
+/// fault, which may be a 200 kB line of a broken file.
+fn short_lines(message: &str) -> String {
+    message
+        .lines()
+        .map(|l| {
+            if l.chars().count() > 160 {
+                let cut: String = l.chars().take(150).collect();
+                format!("{cut}... ({} characters)", l.chars().count())
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// A value as a command line gives it: TOML if it parses as one, else a string.

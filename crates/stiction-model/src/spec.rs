@@ -24,7 +24,8 @@ use contact_core::{Categorized, Category, Material, MaterialProps, Pair};
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
-/// The most curve points (points x cycles) a switch run may write.
+/// The most curve points a run may write (points x cycles of a switch, 2 x points x cases
+/// of an asperity): about 1 GB of output.
 pub const MAX_CURVE_POINTS: f64 = 1e7;
 
 /// The counter-surface of a contact.
@@ -188,6 +189,10 @@ pub struct SwitchGeometrySpec {
     pub drive: Drive,
     /// Fraction phi of the electrode in contact.
     pub contact_area_fraction: f64,
+    /// The electrode's area (m^2), if given (needed for forces and resistances).
+    pub electrode_area: Option<f64>,
+    /// The spring constant (N/m), if the drive was given that way (K_s = k / area).
+    pub spring_constant: Option<f64>,
 }
 
 /// What every validated scene carries: its source, title and accuracy mode.
@@ -333,6 +338,23 @@ impl AsperitySpec {
             toml::Value::Array(delta_max.iter().map(|&d| toml::Value::Float(d)).collect()),
         );
         let common = r.common(2)?;
+        // every case writes a loading and an unloading curve, held whole for rendering
+        let curve_points = 2.0 * common.points as f64 * delta_max.len() as f64;
+        if curve_points > MAX_CURVE_POINTS {
+            return Err(r
+                .fail(
+                    "delta_max",
+                    format!("a list of {} interferences", delta_max.len()),
+                    format!(
+                        "at most {} cases with points = {}: 2 x points x cases = {} curve points exceeds {}",
+                        num((MAX_CURVE_POINTS / (2.0 * common.points as f64)).floor()),
+                        common.points,
+                        num(curve_points),
+                        num(MAX_CURVE_POINTS)
+                    ),
+                )
+                .into());
+        }
         r.finish()?;
         Ok(Self {
             common: common.with_resolved(r.resolved),
@@ -352,7 +374,8 @@ impl SurfaceSpec {
         let mut ends = [None, None];
         for (i, key) in ["d_start", "unload_from"].into_iter().enumerate() {
             if let Some(d) = r.opt_number(key)? {
-                if d.abs() > lim {
+                // within 20 sigma_s up to the rounding of the product
+                if d.abs() > lim * (1.0 + 4.0 * f64::EPSILON) {
                     return Err(r
                         .fail(
                             key,
@@ -721,8 +744,50 @@ impl<'a> Reader<'a> {
             .unwrap_or(film_modulus);
         let contact_area_fraction = self.number("switch.contact_area_fraction")?;
         let energy = self.opt_number("switch.impact_energy")?;
-        let k_s = self.opt_number("switch.k_s")?;
+        let mut k_s = self.opt_number("switch.k_s")?;
         let voltage = self.opt_number("switch.voltage")?;
+        let electrode_area = self.opt_number("switch.electrode_area")?;
+        let spring_constant = self.opt_number("switch.spring_constant")?;
+        if let Some(k) = spring_constant {
+            // drive B in a spring constant (N/m) over the electrode area (m^2)
+            let Some(area) = electrode_area else {
+                return Err(SceneError::Missing {
+                    file: self.file(),
+                    key: "switch.electrode_area".into(),
+                    explanation: format!(
+                        "spring_constant = {} N/m is a force per length: give the electrode area (m^2) it acts on, K_s = spring_constant / electrode_area",
+                        num(k)
+                    ),
+                });
+            };
+            if let Some(ks) = k_s {
+                return Err(self.fail(
+                    "switch.spring_constant",
+                    num(k),
+                    format!(
+                        "absent when k_s = {} Pa/m is given (the same spring twice): give one of the two",
+                        num(ks)
+                    ),
+                ));
+            }
+            let per_area = k / area;
+            let domain = keys::key("switch.k_s").map(|f| f.domain);
+            if !domain.is_some_and(|d| d.contains(per_area)) {
+                return Err(self.fail(
+                    "switch.spring_constant",
+                    format!(
+                        "{} N/m (K_s = spring_constant / electrode_area = {} Pa/m)",
+                        num(k),
+                        num(per_area)
+                    ),
+                    format!(
+                        "such that K_s lies in the domain of switch.k_s: {}",
+                        domain.map(|d| d.describe()).unwrap_or_default()
+                    ),
+                ));
+            }
+            k_s = Some(per_area);
+        }
         let drive = match (energy, k_s) {
             (Some(e), None) => {
                 if let Some(v) = voltage {
@@ -739,14 +804,14 @@ impl<'a> Reader<'a> {
                 return Err(self.fail(
                     "switch.impact_energy",
                     num(e),
-                    "given alone (K_s derived at U = V_PI), or replaced by k_s with an optional voltage (E_I derived), not both",
+                    "given alone (K_s derived at U = V_PI), or replaced by k_s (or spring_constant with electrode_area) with an optional voltage (E_I derived), not both",
                 ))
             }
             (None, None) => {
                 return Err(SceneError::Missing {
                     file: self.file(),
                     key: "switch.impact_energy".into(),
-                    explanation: "give impact_energy (J/m^2; K_s is derived so that release at U = V_PI gives it), or k_s (Pa/m) with an optional voltage (V, default V_PI; E_I is derived)".into(),
+                    explanation: "give impact_energy (J/m^2; K_s is derived so that release at U = V_PI gives it), or k_s (Pa/m), or spring_constant (N/m) with electrode_area (m^2), with an optional voltage (V, default V_PI; E_I is derived)".into(),
                 })
             }
         };
@@ -759,6 +824,8 @@ impl<'a> Reader<'a> {
             film_youngs_modulus,
             drive,
             contact_area_fraction,
+            electrode_area,
+            spring_constant,
         })
     }
 
@@ -905,7 +972,7 @@ impl<'a> Reader<'a> {
             }
             "contact.plasticity"
         };
-        let params = self.law_params(table, Some("contact.plasticity"), &name, entry.params())?;
+        let params = self.law_params(table, None, &name, entry.params())?;
         let law = entry
             .build(&LawContext {
                 pair: &pair,
@@ -957,6 +1024,24 @@ impl<'a> Reader<'a> {
         law: &str,
         e: contact_core::LawError,
     ) -> ModelError {
+        if let Some(PlasticError::Core(contact_core::CoreError::Invalid {
+            field: "delta_cp",
+            value,
+            ..
+        })) = e.downcast_ref::<PlasticError>()
+        {
+            let s_y = self.scene.get("contact.yield_stress").and_then(as_number);
+            return self
+                .fail(
+                    "contact.yield_stress",
+                    s_y.map_or("?".into(), num),
+                    format!(
+                        "small enough that the yield onset of eq 1, delta_CP = R (pi C_v S_Y / 2E)^2, stays finite (it is {} here); a body that never yields is yield_stress = inf with plasticity_law = \"elastic\"",
+                        num(*value)
+                    ),
+                )
+                .into();
+        }
         if let Some(PlasticError::Fit {
             field,
             value,
@@ -1032,7 +1117,7 @@ impl<'a> Reader<'a> {
                             ),
                         })
                     }
-                    Default::Absent | Default::Key(_) => continue,
+                    Default::Absent | Default::Key(_) | Default::RequiredWhen(_) => continue,
                 },
             };
             echo.insert(p.name.to_string(), param_to_toml(&value));

@@ -109,8 +109,14 @@ pub fn electrostatics(spec: &SwitchSpec) -> Result<(Switch, Electrostatics), Mod
                 }
                 .into());
             }
-            let mut given = vec!["k_s"];
-            let mut derived = vec!["impact_energy"];
+            let (mut given, mut derived) = if g.spring_constant.is_some() {
+                (
+                    vec!["spring_constant", "electrode_area"],
+                    vec!["k_s", "impact_energy"],
+                )
+            } else {
+                (vec!["k_s"], vec!["impact_energy"])
+            };
             if voltage.is_some() {
                 given.push("voltage");
             } else {
@@ -132,6 +138,31 @@ pub fn electrostatics(spec: &SwitchSpec) -> Result<(Switch, Electrostatics), Mod
             }
         }
     };
+    // the contacting fraction absorbs E_I/phi per contact area: range-checked like E_I
+    let phi = g.contact_area_fraction;
+    let per_contact = resolved.impact_energy / phi;
+    let domain = keys::key("switch.impact_energy").map(|f| f.domain);
+    if resolved.closes && !domain.is_some_and(|d| d.contains(per_contact)) {
+        return Err(SceneError::Field {
+            file: spec.common.scene.file().to_string(),
+            key: "switch.contact_area_fraction".into(),
+            value: format!(
+                "{} (the impact energy per contact area E_I/phi = {} J/m^2)",
+                num(phi),
+                num(per_contact)
+            ),
+            line: spec
+                .common
+                .scene
+                .line_of("switch.contact_area_fraction")
+                .map_or(String::new(), |l| format!(" (line {l})")),
+            allowed: format!(
+                "such that E_I/phi lies in the domain of switch.impact_energy: {}",
+                domain.map(|d| d.describe()).unwrap_or_default()
+            ),
+        }
+        .into());
+    }
     Ok((sw, resolved))
 }
 

@@ -44,6 +44,17 @@ fn errors(a: &SwitchResult, b: &SwitchResult, sigma: f64) -> (f64, f64) {
         })
 }
 
+/// A rise of d_e between cycles is allowed only where theory 6.3 expects one, and only
+/// when the run reports it: the `non_deepening_impact` warning with an accommodation cause
+/// of `non_deepening`, and either the reload as printed (the eq-12 overshoot) or a run
+/// outside the model's validity (as with the Kogut-Etsion regime jumps pressed a hundred
+/// sigma_s deep under an adhesion that yields the asperities).
+fn explained_rise(r: &SwitchResult) -> bool {
+    let reported = r.warnings.iter().any(|w| w.code == "non_deepening_impact")
+        && r.cycles.iter().any(|c| !c.deepened);
+    reported && (r.laws.reload == "as_printed" || !r.validity.holds)
+}
+
 fn scenes(domain: Domain, seed: u64, n: usize) -> Vec<SwitchSpec> {
     let registry = LawRegistry::builtin();
     let mut rng = Rng::new(seed);
@@ -97,10 +108,14 @@ fn every_mode_meets_its_targets_on_random_mems_scenes() {
                 );
             }
         }
-        // no spurious jump of d_e between cycles
+        // no spurious jump of d_e between cycles: a rise is a documented artefact, and
+        // then the run says so (theory 6.3)
         for w in accurate.cycles.windows(2) {
             let rise = (w[1].d_e - w[0].d_e) / sigma;
-            assert!(rise < 1e-3, "scene {i}: d_e rose by {rise} sigma_s");
+            assert!(
+                rise < 1e-3 || explained_rise(&accurate),
+                "scene {i}: d_e rose by {rise} sigma_s unreported"
+            );
             assert!(w[1].contact_pressure > 0.0);
         }
         if i % 4 == 0 {
@@ -135,7 +150,10 @@ fn modes_meet_their_targets_on_the_wide_ranges_where_the_model_has_an_answer() {
         let sigma = s.roughness.sigma_s;
         for w in accurate.cycles.windows(2) {
             let rise = (w[1].d_e - w[0].d_e) / sigma;
-            assert!(rise < 1e-3, "wide scene {i}: d_e rose by {rise} sigma_s");
+            assert!(
+                rise < 1e-3 || explained_rise(&accurate),
+                "wide scene {i}: d_e rose by {rise} sigma_s unreported"
+            );
         }
         for mode in [Accuracy::Balanced, Accuracy::Fast] {
             let r = run(&s, mode, 0).unwrap_or_else(|e| {

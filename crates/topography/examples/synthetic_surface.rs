@@ -1,6 +1,6 @@
 //! docs/topography.md section 8: from a synthetic surface to the scene fragment.
 //!
-//! `cargo run --release -p topography --example worked_example -- OUT_DIR` synthesises a
+//! `cargo run --release -p topography --example synthetic_surface -- OUT_DIR` synthesises a
 //! self-affine surface, writes it as an x3p file, reads it back, analyses it and writes
 //! `OUT_DIR/surface.x3p`, `OUT_DIR/report.json` and `OUT_DIR/fragment.toml`.
 

@@ -1,0 +1,379 @@
+//! Stiction-free design: thresholds and maps (`stiction_model::design`), run here with
+//! rayon, or point by point elsewhere (a Dask cluster): the plan of a map (its base scene
+//! and points), one point as a worker evaluates it, and the assembly of the workers'
+//! answers into exactly the map `stiction design map` writes (`design_sweep::run_map` over
+//! the answers, so statuses and checks are the library's).
+
+use crate::convert::{py_to_json, result_to_py, value_to_py};
+use crate::errors::{argument, OrRaise};
+use crate::run::accuracy_arg;
+use crate::scene::{registry, scene_from_py};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use std::collections::HashMap;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
+use stiction_model::design::{
+    self, design_point as reduce, map_labels, DesignPoint, Evaluator, Map, MapResult, PointError,
+};
+use stiction_model::design_sweep;
+use stiction_model::guards::{code, Validity, Warning};
+use stiction_model::scene::Scene;
+use stiction_model::{ModelError, Silent};
+
+/// `stiction.design_threshold`: the critical value of one field (`stiction design
+/// threshold`).
+#[pyfunction]
+#[pyo3(signature = (scene, vary, from_, to, accuracy = None))]
+pub fn design_threshold(
+    py: Python<'_>,
+    scene: &Bound<'_, PyAny>,
+    vary: &str,
+    from_: f64,
+    to: f64,
+    accuracy: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    let scene = scene_from_py(scene)?;
+    let acc = accuracy_arg(accuracy)?;
+    let vary = vary.to_string();
+    let r = crate::pool::detach(py, move || {
+        design::threshold(&scene, &registry(), &vary, from_, to, acc)
+    })
+    .or_raise()?;
+    let out = result_to_py(py, &r)?;
+    let d = out.bind(py).cast::<PyDict>()?;
+    d.set_item("warnings", warnings_to_py(py, &r.warnings)?)?;
+    Ok(out)
+}
+
+fn warnings_to_py<'py>(py: Python<'py>, w: &[Warning]) -> PyResult<Bound<'py, PyAny>> {
+    let v: Vec<serde_json::Value> = w
+        .iter()
+        .map(|w| {
+            serde_json::json!({
+                "code": w.code,
+                "message": w.message,
+                "breaks_validity": w.breaks_validity,
+            })
+        })
+        .collect();
+    let list = PyList::empty(py);
+    for x in &v {
+        list.append(value_to_py(py, x)?)?;
+    }
+    Ok(list.into_any())
+}
+
+/// A computed design map (whole, one shard, or merged), with the guards its points raised.
+#[pyclass(name = "NativeMap", module = "stiction._stiction", frozen)]
+pub struct PyMap {
+    map: Map,
+    warnings: Vec<Warning>,
+    validity: Option<Validity>,
+}
+
+impl PyMap {
+    fn of(r: MapResult) -> Self {
+        Self {
+            map: r.map,
+            warnings: r.warnings,
+            validity: Some(r.validity),
+        }
+    }
+}
+
+#[pymethods]
+impl PyMap {
+    /// `map.json` exactly as `stiction design map` writes it.
+    fn to_json(&self) -> String {
+        self.map.to_json()
+    }
+
+    /// `map.csv` exactly as `stiction design map` writes it.
+    fn to_csv(&self) -> PyResult<String> {
+        self.map.to_csv().or_raise()
+    }
+
+    /// `map.svg` exactly as `stiction design map` writes it.
+    fn to_svg(&self) -> PyResult<String> {
+        self.map.to_svg(&map_labels(&self.map)).or_raise()
+    }
+
+    /// The map as Python data: map.json's keys (`scene`, `grid`, `accuracy`, `points`,
+    /// `shard`), plus `warnings` and `validity`.
+    fn data<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let out = result_to_py(py, &self.map)?.into_bound(py);
+        let d = out.cast::<PyDict>()?;
+        d.set_item("warnings", warnings_to_py(py, &self.warnings)?)?;
+        match &self.validity {
+            Some(v) => d.set_item("validity", result_to_py(py, v)?)?,
+            None => d.set_item("validity", py.None())?,
+        }
+        Ok(out)
+    }
+}
+
+/// `stiction.design_map` without a cluster: the points in parallel here (rayon).
+#[pyfunction]
+#[pyo3(signature = (scene, vary, accuracy = None, shard = None))]
+pub fn design_map(
+    py: Python<'_>,
+    scene: &Bound<'_, PyAny>,
+    vary: Vec<String>,
+    accuracy: Option<&str>,
+    shard: Option<&str>,
+) -> PyResult<PyMap> {
+    let scene = scene_from_py(scene)?;
+    let acc = accuracy_arg(accuracy)?;
+    let shard = shard.map(str::to_string);
+    let r = crate::pool::detach(py, move || {
+        design::map(&scene, &registry(), &vary, shard.as_deref(), acc, &Silent)
+    })
+    .or_raise()?;
+    Ok(PyMap::of(r))
+}
+
+/// The plan of a map for a cluster: the base scene of every point (the design settings
+/// applied) as TOML text, and the points to run, `(index, [(field, value), ...])`, checked
+/// as `stiction design map` checks them before any point runs.
+#[pyfunction]
+#[pyo3(signature = (scene, vary, accuracy = None, shard = None))]
+#[allow(clippy::type_complexity)]
+pub fn design_map_plan(
+    py: Python<'_>,
+    scene: &Bound<'_, PyAny>,
+    vary: Vec<String>,
+    accuracy: Option<&str>,
+    shard: Option<&str>,
+) -> PyResult<(String, Vec<(usize, Vec<(String, f64)>)>)> {
+    let scene = scene_from_py(scene)?;
+    let acc = accuracy_arg(accuracy)?;
+    let shard = shard.map(str::to_string);
+    let (base, request) = crate::pool::detach(py, move || {
+        design::map_request(&scene, &registry(), &vary, shard.as_deref(), acc)
+    })
+    .or_raise()?;
+    let text = toml::to_string(base.tree()).map_err(|e| {
+        argument(
+            "scene",
+            base.file().to_string(),
+            format!("writable as TOML: {e}"),
+        )
+    })?;
+    let grid = &request.grid;
+    let indices: Vec<usize> = match request.shard {
+        Some(s) => s.indices(grid.len()).collect(),
+        None => (0..grid.len()).collect(),
+    };
+    let points = indices
+        .into_iter()
+        .map(|i| {
+            let values = grid
+                .axes()
+                .iter()
+                .map(|a| a.field.clone())
+                .zip(grid.values(i))
+                .collect();
+            (i, values)
+        })
+        .collect();
+    Ok((text, points))
+}
+
+/// What a worker answers for one point: (status, design point as a dict or None, message
+/// or None, warnings as (code, message, breaks_validity)).
+type Answer = (
+    &'static str,
+    Option<Py<PyAny>>,
+    Option<String>,
+    Vec<(String, String, bool)>,
+);
+
+/// An [`Answer`] as the assembly reads it back.
+type AnswerIn<'py> = (
+    String,
+    Option<Bound<'py, PyAny>>,
+    Option<String>,
+    Vec<(String, String, bool)>,
+);
+
+/// One design point, as a worker evaluates it: `base` the plan's TOML text, `values` the
+/// point's fields and values. The library's evaluator (`Evaluator::result` reduced by
+/// `design_point`), with the GIL released; a panic is answered as the map would record it.
+#[pyfunction]
+pub fn design_point(py: Python<'_>, base: &str, values: Vec<(String, f64)>) -> PyResult<Answer> {
+    let scene = Scene::from_toml_str(design::POINT, base).or_raise()?;
+    let answer = crate::pool::detach(py, move || {
+        let args: Vec<(&str, f64)> = values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        let registry = registry();
+        let ev = Evaluator::new(scene, &registry);
+        match catch_unwind(AssertUnwindSafe(|| ev.result(&args))) {
+            Ok(Ok(r)) => Ok((reduce(&r), r.warnings)),
+            Ok(Err(e)) => Err(e),
+            Err(payload) => {
+                let msg = payload
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| payload.downcast_ref::<String>().cloned())
+                    .unwrap_or_else(|| "unknown panic".into());
+                Err(PointError::Failed(format!("evaluator panicked: {msg}")))
+            }
+        }
+    });
+    Ok(match answer {
+        Ok((point, warnings)) => {
+            let w = warnings
+                .into_iter()
+                .map(|w| (w.code.to_string(), w.message, w.breaks_validity))
+                .collect();
+            ("ok", Some(result_to_py(py, &point)?), None, w)
+        }
+        Err(PointError::OutOfDomain(m)) => ("out_of_domain", None, Some(m), Vec::new()),
+        Err(PointError::Failed(m)) => ("failed", None, Some(m), Vec::new()),
+    })
+}
+
+/// A guard's code as the library spells it (`&'static str`).
+fn static_code(c: &str) -> &'static str {
+    const KNOWN: [&str; 5] = [
+        code::ADHESION_YIELDS,
+        code::BEYOND_FIT_RANGE,
+        code::ABOVE_HARDNESS,
+        code::ABOVE_STRENGTH,
+        code::NON_DEEPENING,
+    ];
+    match KNOWN.iter().find(|k| **k == c) {
+        Some(k) => k,
+        // a code this build does not know (a newer worker): kept, once per distinct code
+        None => Box::leak(c.to_string().into_boxed_str()),
+    }
+}
+
+fn bits(values: &[f64]) -> Vec<u64> {
+    values.iter().map(|v| v.to_bits()).collect()
+}
+
+/// Assembles the workers' answers (`(index, answer)` per point of the plan) into the map:
+/// the request is made again from the same arguments, and `design_sweep::run_map` records
+/// each point's answer as it records a local evaluation (the same checks and statuses), so
+/// the map equals `stiction design map`'s on the same grid.
+#[pyfunction]
+#[pyo3(signature = (scene, vary, answers, accuracy = None, shard = None))]
+pub fn design_map_assemble(
+    _py: Python<'_>,
+    scene: &Bound<'_, PyAny>,
+    vary: Vec<String>,
+    answers: &Bound<'_, PyList>,
+    accuracy: Option<&str>,
+    shard: Option<&str>,
+) -> PyResult<PyMap> {
+    let scene = scene_from_py(scene)?;
+    let acc = accuracy_arg(accuracy)?;
+    let (base, request) = design::map_request(&scene, &registry(), &vary, shard, acc).or_raise()?;
+    // the answers as Rust values, by the bits of the point's grid values
+    type Got = (Result<DesignPoint, PointError>, Vec<Warning>);
+    let mut got: HashMap<Vec<u64>, Got> = HashMap::new();
+    for item in answers.iter() {
+        let (index, (status, point, message, warnings)): (usize, AnswerIn<'_>) = item.extract()?;
+        if index >= request.grid.len() {
+            return Err(argument(
+                "answers",
+                format!("a point of index {index}"),
+                format!("indices of the grid's {} points", request.grid.len()),
+            ));
+        }
+        let result = match (status.as_str(), point) {
+            ("ok", Some(p)) => {
+                let v = py_to_json(&p, "<answer>", "point")?;
+                let d: DesignPoint = serde_json::from_value(v).map_err(|e| {
+                    argument(
+                        "answers",
+                        format!("point {index}"),
+                        format!("a design point: {e}"),
+                    )
+                })?;
+                Ok(d)
+            }
+            ("out_of_domain", _) => Err(PointError::OutOfDomain(message.unwrap_or_default())),
+            _ => Err(PointError::Failed(message.unwrap_or_default())),
+        };
+        let w = warnings
+            .into_iter()
+            .map(|(c, m, b)| Warning {
+                code: static_code(&c),
+                message: m,
+                breaks_validity: b,
+            })
+            .collect();
+        got.insert(bits(&request.grid.values(index)), (result, w));
+    }
+    let registry = registry();
+    let ev = Evaluator::new(base, &registry);
+    let grid = request.grid.clone();
+    let map = design_sweep::run_map(
+        request,
+        |args: &[(&str, f64)]| -> Result<DesignPoint, PointError> {
+            let values: Vec<f64> = args.iter().map(|(_, v)| *v).collect();
+            match got.get(&bits(&values)) {
+                Some((r, _)) => r.clone(),
+                None => Err(PointError::Failed(
+                    "no answer came back for this point".into(),
+                )),
+            }
+        },
+        |_, _| {},
+    );
+    // the guards in index order (deterministic)
+    for p in map.points() {
+        if let Some((_, w)) = got.get(&bits(&p.values)) {
+            let args: Vec<(&str, f64)> = grid
+                .axes()
+                .iter()
+                .map(|a| a.field.as_str())
+                .zip(p.values.iter().copied())
+                .collect();
+            ev.record(&args, w);
+        }
+    }
+    let warnings = ev.warnings(map.points().len());
+    Ok(PyMap {
+        validity: Some(Validity::of(&warnings)),
+        map,
+        warnings,
+    })
+}
+
+/// Reads a `map.json` (of `stiction design map`, whole or a shard).
+#[pyfunction]
+pub fn read_map(path: PathBuf) -> PyResult<PyMap> {
+    let map = Map::read_path(&path).or_raise()?;
+    Ok(PyMap {
+        map,
+        warnings: Vec::new(),
+        validity: None,
+    })
+}
+
+/// Joins the shards of one map (`stiction design merge`): each a NativeMap or the path of
+/// a `map.json`.
+#[pyfunction]
+pub fn design_merge(parts: &Bound<'_, PyList>) -> PyResult<PyMap> {
+    let mut shards = Vec::new();
+    for (i, p) in parts.iter().enumerate() {
+        if let Ok(m) = p.cast::<PyMap>() {
+            shards.push((format!("part {}", i + 1), m.get().map.clone()));
+        } else {
+            let path: PathBuf = p.extract()?;
+            let map = Map::read_path(&path).or_raise()?;
+            shards.push((path.display().to_string(), map));
+        }
+    }
+    let map = design_sweep::merge(shards)
+        .map_err(ModelError::from)
+        .or_raise()?;
+    Ok(PyMap {
+        map,
+        warnings: Vec::new(),
+        validity: None,
+    })
+}

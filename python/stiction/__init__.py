@@ -1,0 +1,269 @@
+"""stiction: adhesive contact of elasto-plastic rough surfaces and in-use stiction of MEMS
+micro-switches, from Python.
+
+The model library of the ``stiction`` command line (a reference implementation of the
+multiscale model of Wu, Rochus, Noels and Golinval) as a Python package: the same scenes,
+the same validation and messages, the same numbers.
+
+    >>> import stiction
+    >>> scene = stiction.load_scene({"kind": "switch", ...})   # or a TOML/JSON path
+    >>> r = stiction.run(stiction.Scene.paper("switch"), accuracy="fast")
+    >>> r.cycles[0].pull_out_pressure, r.stiction                  # Pa, bool
+
+Units are SI everywhere (m, N, Pa, J/m^2, V), except :func:`maugis_kim_force` and
+:func:`md_curve`, in the nondimensional units of ``stiction md``. Bad input raises
+:class:`InputError`, a numerical failure :class:`NumericalError` (both
+:class:`StictionError`), with the library's message. Every computation releases the GIL.
+
+A tutorial: docs/python.md.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, List, Mapping, Optional, Sequence, Union
+
+from . import _stiction
+from ._errors import InputError, NumericalError, StictionError
+from ._laws import (
+    AdhesionLaw,
+    Asperity,
+    ContactLaw,
+    Jumps,
+    PressureEstimate,
+    PullOff,
+    Surface,
+)
+from ._results import (
+    AsperityResult,
+    CalibrationResult,
+    Cycle,
+    DesignMap,
+    LawEvaluation,
+    LawResult,
+    MapPoint,
+    MdResult,
+    ModelWarning,
+    Record,
+    SurfaceResult,
+    SwitchResult,
+    Table,
+    ThresholdResult,
+)
+from ._stiction import Scene
+
+__version__: str = _stiction.__version__
+
+__all__ = [
+    "Scene",
+    "load_scene",
+    "scene_keys",
+    "variable_fields",
+    "run",
+    "maugis_kim_force",
+    "md_curve",
+    "AdhesionLaw",
+    "Asperity",
+    "Surface",
+    "ContactLaw",
+    "tabulate_law",
+    "design_threshold",
+    "design_map",
+    "design_merge",
+    "read_map",
+    "calibrate",
+    "StictionError",
+    "InputError",
+    "NumericalError",
+    "Record",
+    "Table",
+    "SwitchResult",
+    "Cycle",
+    "SurfaceResult",
+    "AsperityResult",
+    "MdResult",
+    "ThresholdResult",
+    "DesignMap",
+    "MapPoint",
+    "LawResult",
+    "LawEvaluation",
+    "CalibrationResult",
+    "ModelWarning",
+    "Jumps",
+    "PullOff",
+    "PressureEstimate",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+SceneLike = Union[Scene, PathLike, Mapping[str, Any]]
+
+
+def load_scene(path_or_dict: SceneLike) -> Scene:
+    """A scene from a TOML or JSON file (JSON when the name ends in ``.json`` or the text
+    starts with ``{``), a dict of the same keys and sections (``{"kind": "switch",
+    "contact": {...}, "surface": {...}, "switch": {...}}``; an infinite yield stress as
+    ``float("inf")`` or ``"inf"``), or a :class:`Scene`.
+
+    Every key is validated by the library, with its key and law registries: an unknown,
+    missing or out-of-domain key raises :class:`InputError` whose message names the file
+    (``<dict>`` for a dict), the key, the value and what is allowed (``err.key`` is the
+    key)."""
+    return _stiction.load_scene(path_or_dict)
+
+
+def scene_keys(kind: Optional[str] = None) -> List[dict]:
+    """Every scene key (of `kind`: "asperity" | "surface" | "switch", or all) with its
+    unit, what it accepts, its default and its meaning: the library's key registry."""
+    return _stiction.scene_keys(kind)
+
+
+def variable_fields() -> List[str]:
+    """The scene fields a design map or threshold may vary (``section.key``)."""
+    return _stiction.variable_fields()
+
+
+_RESULTS = {"switch": SwitchResult, "surface": SurfaceResult, "asperity": AsperityResult}
+
+
+def run(scene: SceneLike, accuracy: Optional[str] = None) -> Union[SwitchResult, SurfaceResult, AsperityResult]:
+    """Runs a scene of any kind and returns the result of its kind, the same as the
+    command of that kind (``stiction switch | surface | asperity --scene FILE``):
+
+    * a switch scene: :class:`SwitchResult` (``.cycles[i].d_e`` in m,
+      ``.cycles[i].pull_out_pressure`` in Pa, ``.cycles[i].sticks``, ``.stiction``);
+    * a surface scene: :class:`SurfaceResult`;
+    * an asperity scene: :class:`AsperityResult`.
+
+    `accuracy` ("accurate" | "balanced" | "fast" | "reference") replaces the scene's, as
+    ``--accuracy`` does."""
+    kind, data = _stiction.run(scene, accuracy)
+    return _RESULTS[kind](data)
+
+
+def maugis_kim_force(
+    lam: float,
+    delta: Any,
+    path: str = "approach",
+    from_: Optional[float] = None,
+    *,
+    delta_max: Optional[float] = None,
+) -> Any:
+    """The Maugis-Kim force Fbar = F / (pi w R) at each interference Delta = delta /
+    (pi^2 w^2 R / K^2)^(1/3) of `delta` (any shape; a float for a scalar), for the
+    transition parameter ``lam`` = lambda in [1e-6, 1e6] (paper eqs 7-11 with the Kim
+    extension; the units of ``stiction md --lambda LAM --delta D``).
+
+    `path`: "approach" (coming from far: zero until the jump-in Delta_in = -2/(pi lambda))
+    or "retract" after the largest interference `from_` (``--from``; `delta_max` is
+    another name for it), on the stable branch down to the jump-out. Limits: the pull-off
+    under load control is -2 (DMT, lambda -> 0) and -3/2 (JKR, lambda -> inf)."""
+    if delta_max is not None:
+        if from_ is not None and from_ != delta_max:
+            raise InputError(f"from_ = {from_!r} and delta_max = {delta_max!r}: give one (they name the same value)")
+        from_ = delta_max
+    return _stiction.maugis_kim_force(lam, delta, path, from_)
+
+
+def md_curve(lam: float, points: int = 200, delta_end: float = 5.0) -> MdResult:
+    """The whole nondimensional Maugis-Kim curve of lambda = `lam` with `points` points up
+    to Delta = `delta_end`, and its landmarks (jump-in, turning point, both pull-offs),
+    as ``stiction md --lambda LAM``."""
+    return MdResult(_stiction.md_curve(lam, points, delta_end))
+
+
+def design_threshold(
+    scene: SceneLike, vary: str, from_: float, to: float, accuracy: Optional[str] = None
+) -> ThresholdResult:
+    """The critical value of the scene field `vary` (``section.key``, e.g.
+    ``"surface.sigma_s"``) in [`from_`, `to`] (its SI unit) at which the pull-out ratio
+    after accommodation (phi x largest pull-out / K_s d0) crosses 1, as ``stiction design
+    threshold --vary FIELD --from A --to B``."""
+    return ThresholdResult(_stiction.design_threshold(scene, vary, from_, to, accuracy))
+
+
+def _design_map(native: Any) -> DesignMap:
+    return DesignMap(native.data(), native)
+
+
+def design_map(
+    scene: SceneLike,
+    vary: Union[str, Sequence[str]],
+    accuracy: Optional[str] = None,
+    client: Any = None,
+    shard: Optional[str] = None,
+) -> DesignMap:
+    """A 1-D or 2-D map of the pull-out ratio after accommodation (phi x largest pull-out
+    in Pa / K_s d0 in Pa; above 1 the switch sticks) over the grid of `vary`,
+    a list of the CLI's ``--vary`` strings ``"FIELD=FROM:TO:lin|log:N"`` (e.g.
+    ``["switch.k_s=1e9:1e11:log:8"]``; the first varies slowest). The points are those of
+    ``stiction design map --vary ... --accuracy ...`` on the same scene, exactly: each
+    point with ``.pull_out_ratio``, ``.sticks``, ``.closes``, ``.status``; ``to_json()``
+    is the command's map.json.
+
+    Without `client` the points run here, in parallel threads. With a
+    ``dask.distributed.Client`` (or any ``concurrent.futures.Executor``) each point is a
+    task on the cluster, evaluated by this package on the workers, and the answers are
+    assembled into the same map (docs/python.md, "Design maps on a Dask cluster").
+    `shard` ("K/N") runs part K of N of the grid, as ``--shard``; join the parts with
+    :func:`design_merge`."""
+    vary_list = [vary] if isinstance(vary, str) else list(vary)
+    if client is None:
+        return _design_map(_stiction.design_map(scene, vary_list, accuracy, shard))
+    from ._dask import map_on_client
+
+    return _design_map(map_on_client(client, scene, vary_list, accuracy, shard))
+
+
+def design_merge(parts: Sequence[Union[DesignMap, PathLike]]) -> DesignMap:
+    """Joins the shards of one map (DesignMaps or paths of their map.json) into exactly
+    the map of an unsharded run, as ``stiction design merge``."""
+    natives = [p._native if isinstance(p, DesignMap) else os.fspath(p) for p in parts]
+    return _design_map(_stiction.design_merge(natives))
+
+
+def read_map(path: PathLike) -> DesignMap:
+    """Reads a map.json of ``stiction design map`` (whole, merged or a shard)."""
+    return _design_map(_stiction.read_map(os.fspath(path)))
+
+
+def tabulate_law(
+    scene: SceneLike,
+    d_min: Optional[str] = None,
+    points: int = 96,
+    tolerance: float = 2e-4,
+    accuracy: Optional[str] = None,
+) -> LawResult:
+    """Tabulates the contact law p(d; d_min, path) of a switch or surface scene's rough
+    surface for an FE code, as ``stiction law``: `d_min` a uniform grid of histories
+    ``"FROM:TO:N"`` (m, m, count) or None for the adaptive default; `points` start points
+    per branch; `tolerance` on |p_table - p_surface| / (|p_surface| + |p_pull_out|);
+    `accuracy` of the surface evaluations (default fast). ``result.law`` is the
+    :class:`ContactLaw` (``.save(path)`` writes law.json)."""
+    data, native = _stiction.tabulate_law(scene, d_min, points, tolerance, accuracy)
+    data["law"] = ContactLaw(native)
+    return LawResult(data)
+
+
+def calibrate(
+    scene: SceneLike,
+    fe: Union[PathLike, Mapping[str, Sequence[Any]]],
+    fit: str = "c1,c2",
+    overlay: bool = False,
+) -> CalibrationResult:
+    """Fits the constants of eq 13 (c1 = [a1, a2, a3], c2 = [b1, b2, b3]) to
+    finite-element force-interference curves of one asperity, as ``stiction calibrate``:
+    `scene` an asperity scene (the model and the starting constants); `fe` a CSV file with
+    columns delta_max_m, delta_m, force_n, branch (SI; branch loading | unloading), or a
+    mapping of those columns; `fit` the constants to fit (c1, c2, all, a1 ... b3,
+    comma-separated); `overlay` also samples the fitted model per curve."""
+    if isinstance(fe, Mapping):
+        cols = ["delta_max_m", "delta_m", "force_n", "branch"]
+        missing = [c for c in cols if c not in fe]
+        if missing:
+            raise InputError(f"fe: the columns {', '.join(missing)} are missing (give {', '.join(cols)})")
+        rows = zip(*(list(fe[c]) for c in cols))
+        text = ",".join(cols) + "\n" + "".join(
+            f"{float(a)!r},{float(b)!r},{float(c)!r},{d}\n" for a, b, c, d in rows
+        )
+        return CalibrationResult(_stiction.calibrate(scene, None, text, "<columns>", fit, overlay))
+    return CalibrationResult(_stiction.calibrate(scene, os.fspath(fe), None, "<columns>", fit, overlay))

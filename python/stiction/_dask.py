@@ -1,0 +1,60 @@
+"""Design maps on a cluster: one task per design point, evaluated on the workers by this
+package, the answers assembled here into exactly the map of ``stiction design map``.
+
+The plan (the base scene of every point as TOML text, and the points) is made and checked
+by the library before any task is submitted; each worker runs the library's design-point
+evaluator on one point (``stiction._stiction.design_point``); the assembly runs the
+library's map engine over the answers, so the points, statuses and messages are those of
+a local run (the engine is deterministic: the same map to the bit on any number of
+workers or threads).
+
+`client` is a ``dask.distributed.Client`` (the scene text is scattered once to every
+worker, the points are submitted as tasks and gathered), or any
+``concurrent.futures.Executor`` (``ProcessPoolExecutor``: one process per core here).
+Every worker must have this package installed.
+"""
+
+from __future__ import annotations
+
+import uuid
+from typing import Any, List, Optional, Sequence, Tuple
+
+from . import _stiction
+
+
+def evaluate_point(base: str, values: Sequence[Tuple[str, float]]) -> tuple:
+    """One design point, on a worker: `base` the plan's scene (TOML), `values` the
+    point's (field, value) pairs. Returns the answer the assembly takes."""
+    from . import _stiction as native  # imported on the worker
+
+    return native.design_point(base, [(str(k), float(v)) for k, v in values])
+
+
+def map_on_client(
+    client: Any,
+    scene: Any,
+    vary: List[str],
+    accuracy: Optional[str],
+    shard: Optional[str],
+) -> Any:
+    """Runs the points of a map on `client` and assembles them (a NativeMap)."""
+    base, points = _stiction.design_map_plan(scene, vary, accuracy, shard)
+    if not points:
+        return _stiction.design_map_assemble(scene, vary, [], accuracy, shard)
+    if hasattr(client, "scatter") and hasattr(client, "gather"):
+        # dask.distributed: the scene once per worker, one task per point
+        # a key of its own (hash=False): a map run again with the same scene must not meet
+        # the release of the previous run's copy
+        base_ref = client.scatter(base, broadcast=True, hash=False)
+        run = uuid.uuid4().hex[:12]
+        futures = [
+            client.submit(evaluate_point, base_ref, values, key=f"stiction-design-point-{run}-{index}", pure=False)
+            for index, values in points
+        ]
+        answers = client.gather(futures)
+    else:
+        # a concurrent.futures.Executor
+        futures = [client.submit(evaluate_point, base, values) for _, values in points]
+        answers = [f.result() for f in futures]
+    pairs = [(index, answer) for (index, _), answer in zip(points, answers)]
+    return _stiction.design_map_assemble(scene, vary, pairs, accuracy, shard)

@@ -1,0 +1,775 @@
+"""Typed results: the model library's results (their serde form) as Python objects.
+
+A result is a :class:`Record`: its fields are attributes, declared with their types and
+units on each class below (the library's own field names; a field named after a Python
+keyword gets a trailing underscore: ``lambda_``, ``from_``). Curves and other lists of
+flat rows are :class:`Table` objects whose columns are numpy arrays (``result.loading.d``,
+``result.loading.pressure``) and whose rows are records (``result.loading[0].d``). Lists of
+numbers are numpy arrays. Nothing is handed over as JSON text.
+
+Units are SI throughout: m, N, Pa, Pa/m, J/m^2, V (the nondimensional Maugis-Kim curve
+excepted, in the units of ``stiction md``).
+"""
+
+from __future__ import annotations
+
+import keyword
+import typing
+from typing import Any, ClassVar, Dict, Iterator, List, Mapping, Optional, Union
+
+import numpy as np
+
+__all__ = [
+    "Record",
+    "Table",
+    "PressureCurve",
+    "ForceCurve",
+    "MdCurve",
+    "ModelWarning",
+    "Validity",
+    "Laws",
+    "Targets",
+    "SwitchErrors",
+    "DriveReport",
+    "Cycle",
+    "ElasticComparison",
+    "SwitchResult",
+    "SurfaceErrors",
+    "SurfaceResult",
+    "AsperityErrors",
+    "AsperityCase",
+    "AsperityResult",
+    "MdResult",
+    "MapPoint",
+    "DesignMap",
+    "ThresholdResult",
+    "Histories",
+    "LawResult",
+    "LawEvaluation",
+    "PlasticState",
+    "PullOut",
+    "CalibrationResult",
+]
+
+
+def _attr_name(key: str) -> str:
+    return key + "_" if keyword.iskeyword(key) else key
+
+
+def _plain(v: Any) -> Any:
+    """A numpy scalar as its Python value."""
+    return v.item() if isinstance(v, np.generic) else v
+
+
+class Table:
+    """Rows of a result stored as columns: each column a numpy array (float64 with NaN
+    where a row has no value, int64, bool), or a list for words.
+
+    ``t.d`` (or ``t["d"]``) is a column; ``len(t)`` the rows; ``t[i]`` row ``i`` as a
+    :class:`Record`; iterating gives the rows; ``t.columns`` the names;
+    ``t.to_dict()`` the columns.
+    """
+
+    __slots__ = ("_columns",)
+    #: the columns a table of this kind has, with their units (for empty tables and docs)
+    _units: ClassVar[Dict[str, str]] = {}
+
+    def __init__(self, columns: Mapping[str, Any]) -> None:
+        cols: Dict[str, Any] = {}
+        for k, v in columns.items():
+            if isinstance(v, np.ndarray):
+                cols[k] = v
+            elif all(isinstance(x, str) for x in v):
+                cols[k] = np.asarray(v, dtype=str) if len(v) else np.asarray([], dtype=str)
+            else:
+                cols[k] = np.asarray(v, dtype=object)
+        object.__setattr__(self, "_columns", cols)
+
+    @classmethod
+    def empty(cls) -> "Table":
+        """A table of no rows with this kind's columns."""
+        return cls({k: np.zeros(0) for k in cls._units})
+
+    @classmethod
+    def from_rows(cls, rows: List[Mapping[str, Any]]) -> "Table":
+        """A table from a list of dicts (the serde form of a list of flat records)."""
+        if not rows:
+            return cls.empty()
+        names: List[str] = []
+        for r in rows:
+            for k in r:
+                if k not in names:
+                    names.append(k)
+        cols: Dict[str, Any] = {}
+        for k in names:
+            cells = [r.get(k) for r in rows]
+            if all(isinstance(c, bool) for c in cells):
+                cols[k] = np.asarray(cells, dtype=bool)
+            elif all(isinstance(c, (int, float)) and not isinstance(c, bool) or c is None for c in cells):
+                cols[k] = np.asarray([np.nan if c is None else c for c in cells], dtype=float)
+            else:
+                cols[k] = cells
+        return cls(cols)
+
+    @property
+    def columns(self) -> List[str]:
+        """The column names."""
+        return list(self._columns)
+
+    def __getattr__(self, name: str) -> Any:
+        cols = object.__getattribute__(self, "_columns")
+        if name in cols:
+            return cols[name]
+        if name.endswith("_") and name[:-1] in cols:
+            return cols[name[:-1]]
+        raise AttributeError(f"{type(self).__name__} has no column {name!r}; columns: {', '.join(cols)}")
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError("a result table is read-only")
+
+    def __len__(self) -> int:
+        for v in self._columns.values():
+            return len(v)
+        return 0
+
+    def __getitem__(self, i: Union[int, str, slice]) -> Any:
+        if isinstance(i, str):
+            return self._columns[i]
+        if isinstance(i, slice):
+            return type(self)({k: v[i] for k, v in self._columns.items()})
+        n = len(self)
+        if i < 0:
+            i += n
+        if not 0 <= i < n:
+            raise IndexError(f"row {i} of a table of {n} rows")
+        return Record({k: _plain(v[i]) for k, v in self._columns.items()})
+
+    def __iter__(self) -> Iterator["Record"]:
+        for i in range(len(self)):
+            yield self[i]
+
+    def __dir__(self) -> List[str]:
+        return sorted(set(super().__dir__()) | set(self._columns))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Table) or self.columns != other.columns:
+            return NotImplemented
+        return all(
+            np.array_equal(np.asarray(a), np.asarray(b))
+            for a, b in zip(self._columns.values(), other._columns.values())
+        )
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The columns, by name."""
+        return dict(self._columns)
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__}: {len(self)} rows of {', '.join(self._columns)}>"
+
+
+class PressureCurve(Table):
+    """A pressure curve of the rough surface: columns ``d`` (separation, m) and
+    ``pressure`` (nominal pressure, Pa, compressive positive, adhesive negative)."""
+
+    _units = {"d": "m", "pressure": "Pa"}
+    d: np.ndarray
+    pressure: np.ndarray
+
+
+class ForceCurve(Table):
+    """A force curve of one asperity: columns ``delta`` (interference, m) and ``force``
+    (N, compressive positive)."""
+
+    _units = {"delta": "m", "force": "N"}
+    delta: np.ndarray
+    force: np.ndarray
+
+
+class MdCurve(Table):
+    """The nondimensional Maugis-Kim curve (paper eq 7, Kim extension): columns
+    ``delta`` (interference Delta), ``force`` (Fbar), ``a`` (contact radius A), ``c``
+    (radius of the cohesive zone C), ``s`` (C/A on the contact branch; NaN off contact),
+    ``branch`` ("contact" | "non_contact"), ``stable``."""
+
+    _units = {"delta": "-", "force": "-", "a": "-", "c": "-", "s": "-", "branch": "", "stable": ""}
+
+
+class Record:
+    """A result: fields as attributes (see the class's annotations for types and units),
+    ``r["field"]`` too; ``r.to_dict()`` the whole tree as plain Python data."""
+
+    _hints_cache: ClassVar[Dict[type, Dict[str, Any]]] = {}
+
+    def __init__(self, data: Mapping[str, Any]) -> None:
+        hints = type(self)._hints()
+        for key, value in data.items():
+            name = _attr_name(key)
+            object.__setattr__(self, name, _convert(value, hints.get(name)))
+        for name in hints:
+            if name not in self.__dict__:
+                object.__setattr__(self, name, None)
+
+    @classmethod
+    def _hints(cls) -> Dict[str, Any]:
+        cache = Record._hints_cache
+        if cls not in cache:
+            if cls is Record:
+                cache[cls] = {}
+            else:
+                hints = typing.get_type_hints(cls)
+                cache[cls] = {k: v for k, v in hints.items() if not k.startswith("_") and typing.get_origin(v) is not ClassVar}
+        return cache[cls]
+
+    @classmethod
+    def _of(cls, fields: Mapping[str, Any]) -> "Record":
+        """A record of fields already of their declared types (no conversion)."""
+        obj = object.__new__(cls)
+        obj.__dict__.update(fields)
+        return obj
+
+    @classmethod
+    def fields(cls) -> List[str]:
+        """The declared fields."""
+        return list(cls._hints())
+
+    def keys(self) -> List[str]:
+        """The fields this result has."""
+        return list(self.__dict__)
+
+    def __getitem__(self, key: str) -> Any:
+        try:
+            return self.__dict__[_attr_name(key)]
+        except KeyError:
+            raise KeyError(key) from None
+
+    def __contains__(self, key: str) -> bool:
+        return _attr_name(key) in self.__dict__
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError("a result is read-only")
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return NotImplemented
+        a, b = self.__dict__, other.__dict__  # type: ignore[union-attr]
+        if a.keys() != b.keys():
+            return False
+        for k in a:
+            x, y = a[k], b[k]
+            if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
+                if not np.array_equal(np.asarray(x), np.asarray(y)):
+                    return False
+            elif x != y:
+                return False
+        return True
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The result as plain Python data (dicts, lists; arrays as lists)."""
+
+        def plain(v: Any) -> Any:
+            if isinstance(v, Record):
+                return v.to_dict()
+            if isinstance(v, Table):
+                cols = v.to_dict()
+                return [
+                    {k: _plain(c[i]) for k, c in cols.items()} for i in range(len(v))
+                ]
+            if isinstance(v, np.ndarray):
+                return v.tolist()
+            if isinstance(v, list):
+                return [plain(x) for x in v]
+            if isinstance(v, dict):
+                return {k: plain(x) for k, x in v.items()}
+            return _plain(v)
+
+        return {k: plain(v) for k, v in self.__dict__.items()}
+
+    def __repr__(self) -> str:
+        parts = []
+        for k, v in self.__dict__.items():
+            if k.startswith("_"):
+                continue
+            if isinstance(v, (Record, Table, dict)) or (isinstance(v, list) and len(v) > 3):
+                s = f"<{type(v).__name__}>" if not isinstance(v, list) else f"[{len(v)} items]"
+            elif isinstance(v, np.ndarray):
+                s = f"array({v.shape})" if v.size > 4 else repr(v.tolist())
+            else:
+                s = repr(v)
+            parts.append(f"{k}={s}")
+            if len(parts) == 8:
+                parts.append("...")
+                break
+        return f"{type(self).__name__}({', '.join(parts)})"
+
+
+def _convert(value: Any, hint: Any) -> Any:
+    """`value` (Python data from the extension) as the declared type `hint`."""
+    if hint is None or hint is Any:
+        return value
+    origin = typing.get_origin(hint)
+    if origin is Union:
+        args = [a for a in typing.get_args(hint) if a is not type(None)]
+        if value is None:
+            return None
+        return _convert(value, args[0]) if len(args) == 1 else value
+    if origin in (list, List):
+        (item,) = typing.get_args(hint) or (Any,)
+        if isinstance(value, Table):
+            value = [dict(zip(value.columns, (_plain(c[i]) for c in value.to_dict().values()))) for i in range(len(value))]
+        if isinstance(value, np.ndarray):
+            value = value.tolist()
+        return [_convert(v, item) for v in value]
+    if isinstance(hint, type):
+        if issubclass(hint, Table):
+            if isinstance(value, Table):
+                return hint(value.to_dict())
+            if isinstance(value, list):
+                return hint.from_rows(value)
+            return value
+        if issubclass(hint, Record):
+            return hint(value) if isinstance(value, Mapping) else value
+        if hint is float:
+            if isinstance(value, str):
+                return float(value)  # "inf"
+            if isinstance(value, int) and not isinstance(value, bool):
+                return float(value)
+            return value
+        if hint is np.ndarray:
+            if isinstance(value, np.ndarray):
+                return value
+            return np.asarray(value, dtype=float)
+    return value
+
+
+# ---------------------------------------------------------------- shared parts
+
+
+class ModelWarning(Record):
+    """A physics guard raised by a run: the model is used where it leaves its ground."""
+
+    code: str  #: stable identifier (adhesion_yields_asperity, beyond_fit_range, ...)
+    message: str  #: what happened and what it means, with numbers
+    breaks_validity: Optional[bool]  #: whether it puts the result outside the model's validity (design results)
+
+
+class Validity(Record):
+    """Whether the model holds for a result, and which checks say it does not."""
+
+    holds: bool
+    reasons: List[str]  #: codes of the checks that fail
+
+
+class Laws(Record):
+    """The laws and modelling choices of a run."""
+
+    adhesion: str  #: adhesion law (maugis_kim, jkr, dmt, hertz, ...)
+    plasticity: str  #: plasticity law (etsion_kadin, kogut_etsion, elastic, ...)
+    yield_modulus: str  #: reading of eq 1 (as_printed | composite)
+    reload: str  #: reload rule (as_printed | bounded)
+
+
+class Targets(Record):
+    """An accuracy mode and what it promises."""
+
+    mode: str  #: accurate | balanced | fast | reference
+    d_e_tolerance_sigma: float  #: d_e to this fraction of sigma_s
+    pull_out_tolerance: float  #: pull-out to this fraction of itself ...
+    pull_out_floor_of_restoring: float  #: ... or of K_s d0, whichever is larger
+
+
+# ---------------------------------------------------------------- switch
+
+
+class SwitchErrors(Record):
+    """Error estimates of a switch run."""
+
+    d_e: float  #: largest d_e error estimate over the cycles (m)
+    pull_out: float  #: largest pull-out error estimate (Pa), the stopping rule's included
+    accommodation: float  #: how much the largest pull-out could still grow in cycles not run (Pa)
+    pull_out_ratio: float  #: error of the pull-out ratio (-)
+
+
+class DriveReport(Record):
+    """Which of K_s, U, E_I the scene gave and which were derived."""
+
+    mode: str  #: impact_energy | spring
+    given: List[str]
+    derived: List[str]
+
+
+class Cycle(Record):
+    """One switch cycle: the impact (eq 17) and the pull-out."""
+
+    cycle: int  #: 1-based
+    d_e: float  #: end-of-impact separation (m)
+    d_e_error: float  #: its error estimate (m)
+    deepened: bool  #: this impact went deeper than every earlier one
+    shallower_by: float  #: how far d_e stopped above the deepest earlier separation (m)
+    contact_pressure: float  #: approach pressure at d_e (Pa, per contact area)
+    pull_out_pressure: float  #: pull-out pressure (Pa, per contact area, >= 0)
+    pull_out_error: float  #: its error estimate (Pa)
+    pull_out_separation: float  #: where the pull-out occurs (m)
+    pull_out_ratio: float  #: phi pull-out / (K_s d0); above 1 the switch sticks
+    sticks: bool  #: ratio above 1: the spring cannot open the switch
+    unloading: PressureCurve  #: unloading curve (empty with points = 0)
+    well: PressureCurve  #: the adhesive well with the pull-out point (empty with points = 0)
+
+
+class ElasticComparison(Record):
+    """The same surface with asperities that never yield, one cycle."""
+
+    d_e: float  #: m
+    pull_out_pressure: float  #: Pa
+    pull_out_separation: float  #: m
+    pull_out_ratio: float  #: -
+    sticks: bool
+    unloading: PressureCurve
+
+
+class SwitchResult(Record):
+    """A switch run (``stiction switch``): the micro-switch cycle by cycle (paper Fig 4)
+    and the stiction verdict."""
+
+    title: str
+    laws: Laws
+    accuracy: Targets
+    error_estimate: SwitchErrors
+    k_s: float  #: spring stiffness per unit area K_s (Pa/m)
+    v_pull_in: float  #: static pull-in voltage V_PI (V)
+    dynamic_pull_in_voltage: float  #: lowest step voltage that closes the switch (V)
+    voltage: float  #: step voltage U (V)
+    impact_energy: float  #: impact energy per electrode area E_I (J/m^2)
+    restoring_pressure: float  #: K_s d0 (Pa)
+    contact_area_fraction: float  #: fraction phi of the electrode in contact
+    closes: bool  #: whether the electrode reaches contact
+    drive: DriveReport
+    accommodation_tolerance: float  #: relative change that counts as accommodated
+    loading: PressureCurve  #: virgin loading curve of cycle 1 (empty with points = 0)
+    cycles: List[Cycle]  #: the cycles (none when the switch does not close)
+    elastic: Optional[ElasticComparison]  #: the elastic comparison, if run
+    accommodated_after: Optional[int]  #: the cycle after which nothing changes
+    accommodation_cause: Optional[str]  #: saturated | non_deepening | None
+    largest_pull_out: float  #: largest pull-out of all cycles (Pa)
+    pull_out_ratio: float  #: phi largest pull-out / (K_s d0); above 1 the switch sticks
+    first_sticking_cycle: Optional[int]
+    stiction: bool  #: some cycle sticks
+    validity: Validity
+    extrapolated_fraction: float  #: asperities loaded beyond the fits' range after the last cycle
+    warnings: List[ModelWarning]
+    scene: Dict[str, Any]  #: the resolved scene (every key, defaults filled in)
+
+    @property
+    def per_cycle(self) -> Table:
+        """The cycles' scalar fields as a table of numpy columns (``r.per_cycle.d_e``)."""
+        rows = [
+            {k: v for k, v in c.__dict__.items() if not isinstance(v, Table)}
+            for c in self.cycles
+        ]
+        return Table.from_rows(rows) if rows else Table({})
+
+
+# ---------------------------------------------------------------- surface
+
+
+class SurfaceErrors(Record):
+    """Error estimates of a surface run (Pa)."""
+
+    pressure: float  #: largest error estimate of a curve pressure
+    pull_out: Optional[float]  #: the pull-out pressure's
+
+
+class SurfaceResult(Record):
+    """A surface run (``stiction surface``): the rough surface's loading, unloading and
+    reloading curves (eqs 14-16)."""
+
+    title: str
+    laws: Laws
+    sigma_s: float  #: RMS asperity height (m)
+    accuracy: Targets
+    error_estimate: SurfaceErrors
+    loading: PressureCurve  #: virgin loading from d_start to the first touch
+    unload_from: Optional[float]  #: separation unloaded from (m)
+    unloading: PressureCurve  #: from unload_from to the last contact
+    reloading: PressureCurve  #: approach with the history of unload_from
+    pull_out_pressure: Optional[float]  #: magnitude of the most tensile unloading pressure (Pa)
+    pull_out_separation: Optional[float]  #: where (m)
+    extrapolated_fraction: float
+    validity: Validity
+    warnings: List[ModelWarning]
+    scene: Dict[str, Any]
+
+
+# ---------------------------------------------------------------- asperity
+
+
+class AsperityErrors(Record):
+    """Error estimates of an asperity run."""
+
+    pull_off: float  #: largest change of a pull-off force within its location tolerance (N)
+
+
+class AsperityCase(Record):
+    """One asperity loaded to delta_max and unloaded (paper Fig 2)."""
+
+    delta_max: float  #: maximum interference (m)
+    delta_res: float  #: residual height loss (m), eq 4
+    r_res: float  #: residual radius (m), eq 5
+    r_eff_loading: float  #: R_eff on loading at delta_max (m), eq 12 with x = 1
+    pull_off_force: float  #: most tensile force on unloading (N)
+    pull_off_interference: float  #: where (m)
+    elastic_pull_off_force: float  #: the same for the elastic asperity (N)
+    extrapolated: bool  #: delta_max beyond the fits' range
+    loading: ForceCurve
+    unloading: ForceCurve
+
+
+class AsperityResult(Record):
+    """An asperity run (``stiction asperity``)."""
+
+    title: str
+    laws: Laws
+    delta_cp: float  #: yield onset delta_CP (m), eq 1 (inf if it never yields)
+    lambda_: float  #: transition parameter lambda at the initial radius (eq 6)
+    radius: float  #: initial radius (m)
+    accuracy: Targets
+    error_estimate: AsperityErrors
+    cases: List[AsperityCase]
+    validity: Validity
+    warnings: List[ModelWarning]
+    scene: Dict[str, Any]
+
+
+# ---------------------------------------------------------------- Maugis-Kim
+
+
+class MdResult(Record):
+    """The nondimensional Maugis-Kim curve and its landmarks (``stiction md``):
+    Delta = delta / (pi^2 w^2 R / K^2)^(1/3), Fbar = F / (pi w R)."""
+
+    lambda_: float  #: transition parameter lambda (eq 6)
+    jump_in_delta: float  #: jump-in on approach, Delta_in = -2/(pi lambda)
+    turning_delta: float  #: turning point (jump-out) Delta_t
+    turning_force: float  #: force there
+    pull_off_load_control: float  #: minimum force on the stable branch (DMT -2, JKR -3/2)
+    pull_off_displacement_control: float  #: force at jump-out (JKR -5/6)
+    curve: MdCurve
+
+
+# ---------------------------------------------------------------- design
+
+
+class MapPoint(Record):
+    """One point of a design map (a row of map.csv, a point of map.json). The design
+    fields are None where the point has no design (out of domain, failed)."""
+
+    index: int  #: index in the grid (the first varied field varies slowest)
+    values: Dict[str, float]  #: the varied fields' values (SI)
+    status: str  #: ok | does_not_close | out_of_domain | failed
+    detail: Optional[str]  #: why, for out_of_domain and failed
+    pull_out_ratio: Optional[float]  #: largest pull-out after accommodation / K_s d0 (> 1 sticks; 0: does not close)
+    largest_pull_out_pa: Optional[float]  #: Pa
+    restoring_pressure_pa: Optional[float]  #: K_s d0 (Pa)
+    cycles_to_accommodation: Optional[int]
+    first_sticking_cycle: Optional[int]
+    sticks: Optional[bool]  #: the switch stays shut
+    closes: Optional[bool]  #: the electrode reaches contact
+    validity_holds: Optional[bool]  #: the model holds at this point
+    accommodation_cause: Optional[str]  #: saturated | non_deepening
+
+
+class DesignMap(Record):
+    """A design map (``stiction design map``): the pull-out ratio after accommodation over
+    a 1-D or 2-D grid of scene fields. ``to_json()``, ``to_csv()``, ``to_svg()`` give the
+    files of the command, byte for byte; ``save(folder)`` writes them."""
+
+    format: str  #: "stiction-design-map"
+    version: int
+    accuracy: str  #: accuracy mode of the design points
+    grid: Dict[str, Any]  #: the axes: field, from, to, spacing, n, values
+    scene: Dict[str, Any]  #: the scene as run (design settings applied)
+    shard: Optional[Dict[str, Any]]  #: this map's part K of N, for a shard
+    points: List[MapPoint]
+    warnings: List[ModelWarning]  #: guards the points raised (one per kind, with counts)
+    validity: Optional[Validity]  #: whether the model holds at every point (None for a merged map)
+
+    def __init__(self, data: Mapping[str, Any], native: Any = None) -> None:
+        super().__init__(data)
+        object.__setattr__(self, "_native", native)
+
+    def keys(self) -> List[str]:
+        return [k for k in self.__dict__ if k != "_native"]
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, DesignMap):
+            return NotImplemented
+        return self.to_json() == other.to_json()
+
+    def to_dict(self) -> Dict[str, Any]:
+        d = super().to_dict()
+        d.pop("_native", None)
+        return d
+
+    def column(self, name: str) -> np.ndarray:
+        """One field of every point as a numpy array in index order (float with NaN where
+        a point has none, bool for flags, object otherwise)."""
+        cells = [getattr(p, name) for p in self.points]
+        if all(isinstance(c, bool) for c in cells):
+            return np.asarray(cells, dtype=bool)
+        if all(c is None or (isinstance(c, (int, float)) and not isinstance(c, bool)) for c in cells):
+            return np.asarray([np.nan if c is None else c for c in cells], dtype=float)
+        return np.asarray(cells, dtype=object)
+
+    def values_of(self, field: str) -> np.ndarray:
+        """The values of a varied field at every point (SI), in index order."""
+        return np.asarray([p.values[field] for p in self.points], dtype=float)
+
+    def to_json(self) -> str:
+        """map.json exactly as ``stiction design map`` writes it."""
+        return self._native.to_json()
+
+    def to_csv(self) -> str:
+        """map.csv exactly as ``stiction design map`` writes it."""
+        return self._native.to_csv()
+
+    def to_svg(self) -> str:
+        """map.svg exactly as ``stiction design map`` writes it."""
+        return self._native.to_svg()
+
+    def save(self, folder: Any) -> None:
+        """Writes map.json, map.csv and map.svg to `folder` (made if missing)."""
+        import os
+
+        os.makedirs(folder, exist_ok=True)
+        for name, text in (("map.json", self.to_json()), ("map.csv", self.to_csv()), ("map.svg", self.to_svg())):
+            with open(os.path.join(folder, name), "w", encoding="utf-8") as f:
+                f.write(text)
+
+
+class ThresholdResult(Record):
+    """The critical value of one scene field (``stiction design threshold``): where the
+    pull-out ratio after accommodation crosses 1."""
+
+    parameter: str  #: the varied field
+    critical_value: Optional[float]  #: in the field's unit
+    free_side: Optional[str]  #: above | below: where the switch is free of stiction
+    kind: Optional[str]  #: continuous | closure | ...
+    uncertainty: Optional[float]  #: of the critical value
+    ratio_at_from: Optional[float]
+    ratio_at_to: Optional[float]
+    evaluations: int  #: design points run
+    from_: float  #: one end of the range
+    to: float  #: the other end
+    spacing: str  #: lin | log scan
+    tolerance: float  #: relative tolerance of the root
+    ratio_rel_error: float  #: relative error of the ratio at this accuracy
+    crossings: List[Dict[str, Any]]  #: every crossing of 1 found
+    closure_boundary: Optional[Dict[str, Any]]
+    closure_boundaries: List[Dict[str, Any]]
+    scan: Table  #: value, status, pull_out_ratio, closes, validity_holds
+    accuracy: str
+    unit: Optional[str]  #: SI unit of the field
+    validity: Validity
+    warnings: List[ModelWarning]
+
+
+# ---------------------------------------------------------------- contact law
+
+
+class Histories(Record):
+    """How the tabulated histories d_min were chosen."""
+
+    rule: str  #: adaptive | uniform FROM:TO:N
+    d_min_lo: float  #: deepest tabulated history (m)
+    d_min_hi: float  #: shallowest (m)
+    deepest_d_e: Optional[float]  #: deepest end of impact of the scene's cycles (m)
+    cycles_d_e: Optional[np.ndarray]  #: the cycles' d_e (m)
+    below_deepest_d_e: Optional[float]  #: m
+    first_touch_reference: Optional[float]  #: Pa
+    first_touch_fraction: Optional[float]
+    virgin_reach: float  #: where the first asperity jumps in on a virgin approach (m)
+    description: str
+
+
+class LawResult(Record):
+    """A tabulation of the contact law (``stiction law``); ``law`` is the
+    :class:`stiction.ContactLaw` itself (``law.save(path)`` writes law.json)."""
+
+    title: str
+    laws: Laws
+    validity: Validity
+    accuracy: Targets
+    sigma_s: float  #: m
+    histories: Histories
+    branches: int  #: number of tabulated histories
+    virgin_nodes: int
+    nodes: int
+    tolerance: float  #: refinement tolerance
+    measured_error: Dict[str, Any]  #: interpolation error measured against the surface
+    partial_reload: Dict[str, Any]  #: error of the one-number history after a partial reload
+    partial_reload_turn_fractions: np.ndarray
+    source_evaluations: int  #: surface pressure evaluations
+    converged: bool
+    seconds: float  #: wall time (s)
+    law_json_bytes: int
+    summary: Table  #: per history: d_min, start_pressure, pull_out_d, pull_out_pressure, ...
+    warnings: List[ModelWarning]
+    law: Any  #: the tabulated law (stiction.ContactLaw)
+
+
+class LawEvaluation(Record):
+    """Values of a contact law at arrays of separations (``ContactLaw.evaluate``), each of
+    the separations' shape."""
+
+    pressure: np.ndarray  #: p (Pa), compressive positive, adhesive negative
+    tangent: np.ndarray  #: dp/dd at fixed history (Pa/m)
+    d_min: np.ndarray  #: the history after the call (m): d where d < the d_min given
+    retract: np.ndarray  #: True where the path after the call is retract
+
+    @property
+    def path(self) -> np.ndarray:
+        """The path after the call, "approach" | "retract" per point."""
+        return np.where(self.retract, "retract", "approach")
+
+
+class PlasticState(Record):
+    """The plastic state of an asperity after loading to delta_max (eqs 4-5)."""
+
+    delta_res: Any  #: residual height loss (m)
+    r_res: Any  #: residual radius (m)
+    extrapolated: Any  #: delta_max beyond the fits' range
+
+
+class PullOut(Record):
+    """The pull-out of a rough surface pressed to d_min."""
+
+    pressure: float  #: magnitude of the most tensile pressure (Pa, >= 0)
+    separation: float  #: where (m)
+    error: float  #: error estimate (Pa)
+
+
+# ---------------------------------------------------------------- calibration
+
+
+class CalibrationResult(Record):
+    """A calibration of eq 13 to finite-element curves (``stiction calibrate``). Besides
+    the fields below it carries every key of the library's fit report."""
+
+    title: str
+    laws: Laws
+    model: Dict[str, Any]  #: work_of_adhesion (J/m^2), z0 (m), radius (m)
+    fe_file: str
+    data_points: int
+    ignored_columns: List[str]
+    c1: np.ndarray  #: fitted [a1, a2, a3] of eq 13
+    c2: np.ndarray  #: fitted [b1, b2, b3]
+    start_c1: np.ndarray
+    start_c2: np.ndarray
+    residual_rms_n: float  #: RMS residual force (N)
+    converged: bool
+    scene_fragment: str  #: a [contact.effective_radius] table to paste into a scene
+    warnings: List[ModelWarning]
+    scene: Dict[str, Any]
+    points: Table  #: every data point with the model's force: delta_max, branch, delta, force, model_force
+    overlay: List[Dict[str, Any]]  #: data and model per curve (with overlay=True)

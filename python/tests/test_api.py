@@ -1,0 +1,92 @@
+"""The public API: the contract's names, the stubs of the extension module against the
+module itself, docstrings that state units."""
+
+from __future__ import annotations
+
+import ast
+import inspect
+import pathlib
+
+import pytest
+
+import stiction
+from stiction import _stiction
+
+STUB = pathlib.Path(stiction.__file__).with_name("_stiction.pyi")
+
+
+def _stub_tree():
+    tree = ast.parse(STUB.read_text())
+    funcs = {n.name: n for n in tree.body if isinstance(n, ast.FunctionDef)}
+    classes = {n.name: n for n in tree.body if isinstance(n, ast.ClassDef)}
+    return funcs, classes
+
+
+def _params(node: ast.FunctionDef) -> list:
+    a = node.args
+    return [x.arg for x in a.posonlyargs + a.args + a.kwonlyargs if x.arg not in ("self", "cls")]
+
+
+def test_the_contracts_names_exist():
+    for name in ("load_scene", "run", "maugis_kim_force", "design_map", "ContactLaw", "InputError", "NumericalError", "StictionError"):
+        assert hasattr(stiction, name), name
+    assert callable(stiction.ContactLaw.load) and callable(stiction.ContactLaw.evaluate)
+    assert list(inspect.signature(stiction.design_map).parameters)[:4] == ["scene", "vary", "accuracy", "client"]
+    assert list(inspect.signature(stiction.run).parameters) == ["scene", "accuracy"]
+    assert list(inspect.signature(stiction.maugis_kim_force).parameters)[:3] == ["lam", "delta", "path"]
+    assert inspect.signature(stiction.maugis_kim_force).parameters["path"].default == "approach"
+    assert list(inspect.signature(stiction.ContactLaw.evaluate).parameters)[1:] == ["d", "d_min", "path"]
+    for name in stiction.__all__:
+        assert hasattr(stiction, name), name
+
+
+def test_the_stub_declares_the_extension_module():
+    funcs, classes = _stub_tree()
+    public = {n for n in dir(_stiction) if not n.startswith("_")}
+    assert public == set(funcs) | set(classes)
+    for name, node in funcs.items():
+        sig = inspect.signature(getattr(_stiction, name))
+        assert _params(node) == list(sig.parameters), name
+    for name, node in classes.items():
+        cls = getattr(_stiction, name)
+        declared = {n.name: n for n in node.body if isinstance(n, ast.FunctionDef)}
+        members = {m for m in dir(cls) if not m.startswith("_")}
+        assert members == {m for m in declared if not m.startswith("_")}, name
+        for m, fn in declared.items():
+            obj = inspect.getattr_static(cls, m)
+            if isinstance(obj, property) or type(obj).__name__ == "getset_descriptor":
+                continue
+            target = getattr(cls, m)
+            try:
+                sig = inspect.signature(target)
+            except (ValueError, TypeError):
+                continue
+            got = [p for p in sig.parameters if p not in ("self", "cls", "$self")]
+            if m.startswith("__"):
+                continue  # slot wrappers name their arguments their own way
+            assert _params(fn) == got, f"{name}.{m}"
+
+
+@pytest.mark.parametrize(
+    "obj",
+    [
+        stiction.run,
+        stiction.maugis_kim_force,
+        stiction.design_map,
+        stiction.tabulate_law,
+        stiction.AdhesionLaw.force,
+        stiction.Asperity.force,
+        stiction.Surface.pressure,
+        stiction.ContactLaw.evaluate,
+        stiction.Surface,
+    ],
+)
+def test_docstrings_state_units(obj):
+    doc = inspect.getdoc(obj) or ""
+    assert any(u in doc for u in ("(m", " m)", "Pa", "(N", "nondimensional", "units of")), obj
+
+
+def test_result_classes_declare_units():
+    src = pathlib.Path(stiction.__file__).with_name("_results.py").read_text()
+    for field in ("d_e: float  #: end-of-impact separation (m)", "pull_out_pressure: float  #: pull-out pressure (Pa"):
+        assert field in src

@@ -1,0 +1,129 @@
+"""Runs of every scene kind: the same results as the command line, to the bit, as typed
+objects with numpy columns."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import stiction
+
+# the paper's switch (Fig 4) in the fast mode, recorded from `stiction switch --accuracy
+# fast --format json`: pull-out pressure (Pa) of cycles 1-10 and d_e (m) of cycle 1
+PAPER_FAST_PULL_OUTS = [
+    1810878.5721288698,
+    2245376.6540812594,
+    2381125.4834568286,
+    2424907.791702559,
+    2439154.7658682317,
+    2443803.6791782584,
+    2445322.016291853,
+    2445818.0499289054,
+    2445980.117157652,
+    2446033.070420503,
+]
+PAPER_FAST_D_E_1 = 9.624076812442269e-09
+
+
+@pytest.fixture(scope="module")
+def switch_fast():
+    return stiction.run(stiction.Scene.paper("switch"), accuracy="fast")
+
+
+def test_switch_cycles_have_the_recorded_pull_outs(switch_fast):
+    r = switch_fast
+    assert isinstance(r, stiction.SwitchResult)
+    assert [c.pull_out_pressure for c in r.cycles] == PAPER_FAST_PULL_OUTS
+    assert r.cycles[0].d_e == PAPER_FAST_D_E_1
+    assert r.cycles[0].sticks is True and r.stiction is True
+    # the paper's Fig 4: 1.81 MPa on cycle 1, 2.45 MPa accommodated
+    assert r.cycles[0].pull_out_pressure == pytest.approx(1.811e6, rel=1e-3)
+    assert r.largest_pull_out == pytest.approx(2.446e6, rel=1e-3)
+    assert r.accommodated_after == 6 and r.validity.holds
+
+
+def test_switch_equals_the_command_line(cli, switch_fast):
+    expected = cli.json("switch", "--accuracy", "fast", "--format", "json")
+    assert switch_fast.to_dict() == expected
+
+
+def test_results_are_typed_with_numpy_columns(switch_fast):
+    r = switch_fast
+    c = r.cycles[2]
+    assert isinstance(c, stiction.Cycle) and c.cycle == 3
+    assert isinstance(c.unloading.d, np.ndarray) and c.unloading.d.dtype == np.float64
+    assert len(c.unloading) == 200 and c.unloading[0].d == c.unloading.d[0]
+    assert r.loading.pressure.shape == (200,)
+    assert r.per_cycle.d_e.tolist() == [x.d_e for x in r.cycles]
+    assert r.per_cycle.sticks.dtype == bool
+    assert r.elastic is not None and r.elastic.sticks is False
+    assert r.laws.adhesion == "maugis_kim" and r.accuracy.mode == "fast"
+    assert r["stiction"] is True and "cycles" in r
+
+
+def test_scene_sources_give_the_same_run(tmp_path):
+    s = stiction.Scene.paper("switch")
+    s.set("points", 0)
+    s.set("cycles", 2)
+    s.set("elastic_comparison", False)
+    path = tmp_path / "s.toml"
+    path.write_text(s.to_toml())
+    a = stiction.run(path, accuracy="fast")
+    b = stiction.run(s.to_dict(), accuracy="fast")
+    assert a.to_dict()["cycles"] == b.to_dict()["cycles"]
+    assert [c.pull_out_pressure for c in a.cycles] == PAPER_FAST_PULL_OUTS[:2]
+    assert len(a.cycles[0].unloading) == 0 and isinstance(a.cycles[0].unloading, stiction.Table)
+    assert a.elastic is None
+
+
+def test_surface_equals_the_command_line(cli, tmp_path):
+    s = stiction.Scene.paper("surface")
+    s.set("unload_from", 5e-9)
+    s.set("points", 40)
+    s.set("accuracy", "fast")
+    path = tmp_path / "surface.toml"
+    path.write_text(s.to_toml())
+    r = stiction.run(path)
+    assert isinstance(r, stiction.SurfaceResult)
+    assert r.to_dict() == cli.json("surface", "--scene", path, "--format", "json")
+    # no sampled point of the unloading curve pulls harder than the pull-out
+    assert r.pull_out_pressure > 0 and r.unloading.pressure.min() >= -r.pull_out_pressure * (1 + 1e-9)
+
+
+def test_asperity_equals_the_command_line(cli, tmp_path):
+    s = stiction.Scene.paper("asperity")
+    s.set("points", 30)
+    path = tmp_path / "asperity.toml"
+    path.write_text(s.to_toml())
+    r = stiction.run(path)
+    assert isinstance(r, stiction.AsperityResult)
+    expected = cli.json("asperity", "--scene", path, "--format", "json")
+    d = r.to_dict()
+    d["lambda"] = d.pop("lambda_")
+    assert d == expected
+    assert r.lambda_ == expected["lambda"]
+
+
+def test_a_run_that_cannot_be_built_is_input(paper_switch):
+    with pytest.raises(stiction.InputError, match="accuracy"):
+        stiction.run(paper_switch, accuracy="sloppy")
+
+
+def test_every_field_of_a_result_is_declared(switch_fast):
+    # the declared fields (the typed attributes and the docs) cover what the library gives
+    def check(rec):
+        declared = set(type(rec).fields())
+        given = set(rec.keys())
+        assert given <= declared, f"{type(rec).__name__}: undeclared {given - declared}"
+
+    r = switch_fast
+    check(r)
+    check(r.cycles[0])
+    check(r.elastic)
+    check(r.error_estimate)
+    check(r.accuracy)
+    check(r.laws)
+    check(r.drive)
+    check(stiction.run(stiction.Scene.paper("asperity")))
+    check(stiction.run(stiction.Scene.paper("asperity")).cases[0])
+    check(stiction.md_curve(1.0))

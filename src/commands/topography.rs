@@ -1,0 +1,431 @@
+//! `stiction topography`: a measured height map (AFM, profilometer) to the
+//! Greenwood-Williamson parameters of a scene, by the spectral moments and by the summits on
+//! the grid (the model library's `topography`; `docs/topography.md`).
+
+use super::{finish, preflight, Outputs};
+use crate::error::Error;
+use crate::output::OutputSet;
+use crate::render::{self, Format, Render, Validity, Warning};
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use stiction_model::guards::si;
+use stiction_model::topography::{
+    analyze_file, scene_fragment, AnalysisOptions, Detrend, Format as MapFormat, LengthUnit,
+    ReadOptions, Route, TopographyReport,
+};
+
+/// The files `--out` writes.
+pub const FILES: &[&str] = &["topography.json", "surface.toml", "topography.svg"];
+
+/// The file formats as options.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum FormatArg {
+    /// Plain text matrix of heights.
+    Text,
+    /// x, y, z columns.
+    Xyz,
+    /// NumPy .npy.
+    Npy,
+    /// Gwyddion Simple Field .gsf.
+    Gsf,
+    /// Gwyddion .gwy.
+    Gwy,
+    /// ISO 25178-72 .x3p.
+    X3p,
+}
+
+/// The route a scene fragment takes its numbers from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum RouteArg {
+    /// The summits found on the grid (higher than their 8 neighbours).
+    Summits,
+    /// McCool's formulas on the spectral moments.
+    Spectral,
+}
+
+/// Greenwood-Williamson parameters (sigma_s, asperity density, radius) from a measured
+/// height map, two ways, with a [surface] scene fragment.
+#[derive(Debug, Clone, clap::Args)]
+pub struct TopographyCommand {
+    /// The height map: a text matrix, x/y/z columns, .npy, Gwyddion .gwy or .gsf, or
+    /// ISO 25178-72 .x3p (the format from the extension and the first bytes).
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    /// Read the file as this format.
+    #[arg(long = "file-format", value_enum)]
+    pub file_format: Option<FormatArg>,
+    /// Grid spacing (m) for a format that lacks one (text, npy); overrides the file's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub spacing: Option<f64>,
+    /// Unit of the heights for a file that does not state it (m, mm, um, nm, pm, A).
+    #[arg(long)]
+    pub height_unit: Option<String>,
+    /// Unit of x and y of an x/y/z file that does not state it.
+    #[arg(long)]
+    pub xy_unit: Option<String>,
+    /// Form removed before the statistics: mean, plane (default) or poly:N (N = 2..6).
+    #[arg(long, default_value = "plane")]
+    pub detrend: String,
+    /// The route of the scene fragment.
+    #[arg(long, value_enum, default_value_t = RouteArg::Summits)]
+    pub route: RouteArg,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+    /// Write topography.json, surface.toml (a scene fragment) and topography.svg to this
+    /// folder (replaced as a whole; it may hold only those files).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+fn unit(option: &str, text: &Option<String>) -> Result<Option<LengthUnit>, Error> {
+    text.as_deref()
+        .map(|t| LengthUnit::parse(t).map_err(|e| Error::usage(option, e.to_string())))
+        .transpose()
+}
+
+impl TopographyCommand {
+    /// Reads, analyses, writes.
+    pub fn execute(&self) -> Result<String, Error> {
+        let detrend = match self.detrend.trim() {
+            "mean" => Detrend::Mean,
+            "plane" => Detrend::Plane,
+            t => match t
+                .strip_prefix("poly:")
+                .and_then(|n| n.parse::<usize>().ok())
+            {
+                Some(n) if (2..=Detrend::MAX_ORDER).contains(&n) => Detrend::Polynomial(n),
+                _ => {
+                    return Err(Error::usage(
+                        "--detrend",
+                        format!(
+                            "`{t}`: must be mean, plane or poly:N with N in 2..={}",
+                            Detrend::MAX_ORDER
+                        ),
+                    ))
+                }
+            },
+        };
+        if let Some(s) = self.spacing {
+            if !(s.is_finite() && s > 0.0) {
+                return Err(Error::usage(
+                    "--spacing",
+                    format!("{s:e}: must be a finite length > 0 (m)"),
+                ));
+            }
+        }
+        let read = ReadOptions {
+            format: self.file_format.map(|f| match f {
+                FormatArg::Text => MapFormat::Text,
+                FormatArg::Xyz => MapFormat::Xyz,
+                FormatArg::Npy => MapFormat::Npy,
+                FormatArg::Gsf => MapFormat::Gsf,
+                FormatArg::Gwy => MapFormat::Gwy,
+                FormatArg::X3p => MapFormat::X3p,
+            }),
+            spacing: self.spacing,
+            height_unit: unit("--height-unit", &self.height_unit)?,
+            xy_unit: unit("--xy-unit", &self.xy_unit)?,
+            ..ReadOptions::default()
+        };
+        preflight(self.out.as_deref(), FILES, None)?;
+        let options = AnalysisOptions {
+            detrend,
+            ..AnalysisOptions::default()
+        };
+        let report = analyze_file(&self.file, &read, &options)?;
+        let route = match self.route {
+            RouteArg::Summits if report.summits.is_some() => Route::Summits,
+            _ => Route::Spectral,
+        };
+        let fragment = scene_fragment(&report, route).map_err(stiction_model::ModelError::from)?;
+        let result = TopographyResult {
+            report,
+            fragment,
+            warnings: Vec::new(),
+        };
+        let mut outputs = Outputs::default();
+        if let Some(dir) = &self.out {
+            let mut set = OutputSet::new(dir, FILES);
+            set.add("topography.json", render::json(&result.report));
+            set.add("surface.toml", result.fragment.as_bytes());
+            let svg = plot_svg(&result.report).map_err(|message| Error::Plot {
+                path: dir.join("topography.svg").display().to_string(),
+                message,
+            })?;
+            set.add("topography.svg", svg);
+            outputs.folder = Some(set);
+        }
+        finish(&result, self.format, false, false, outputs)
+    }
+}
+
+/// The report with its scene fragment.
+#[derive(Debug, Clone, serde::Serialize)]
+#[serde(transparent)]
+pub struct TopographyResult {
+    /// The analysis (the JSON of `--format json`).
+    pub report: TopographyReport,
+    /// The `[surface]`/`[contact]` fragment.
+    #[serde(skip)]
+    pub fragment: String,
+    /// Printed on standard error (the report's own warnings are in its table).
+    #[serde(skip)]
+    pub warnings: Vec<Warning>,
+}
+
+impl Render for TopographyResult {
+    fn table(&self) -> String {
+        let r = &self.report;
+        let mut s = String::new();
+        let g = &r.grid;
+        let d = &r.detrending;
+        let _ = writeln!(
+            s,
+            "height map {} x {} points, spacing {} x {} (scan {} x {}); removed: {} (order {}), mean height {}, tilt {:.3} degrees",
+            g.nx,
+            g.ny,
+            si(g.dx, "m", 4),
+            si(g.dy, "m", 4),
+            si(g.scan_x, "m", 4),
+            si(g.scan_y, "m", 4),
+            d.method,
+            d.order,
+            si(d.mean_height, "m", 4),
+            d.tilt_degrees
+        );
+        let _ = writeln!(
+            s,
+            "rms height {} (not sigma_s: the model needs the summits'), m2 = {:.4e}, m4 = {:.4e} 1/m^2, alpha = {:.3}",
+            si(r.rms_height, "m", 4),
+            r.m2,
+            r.m4,
+            r.alpha
+        );
+        let _ = writeln!(
+            s,
+            "\n{:<10} {:>12} {:>16} {:>12} {:>12}",
+            "route", "sigma_s", "density [1/m^2]", "radius", "offset"
+        );
+        let mut row = |name: &str, gw: &stiction_model::topography::GwParameters| {
+            let _ = writeln!(
+                s,
+                "{:<10} {:>12} {:>16.4e} {:>12} {:>12}",
+                name,
+                si(gw.sigma_s, "m", 4),
+                gw.asperity_density,
+                si(gw.radius, "m", 4),
+                si(gw.offset, "m", 4)
+            );
+        };
+        row("spectral", &r.spectral.gw);
+        if let Some(sm) = &r.summits {
+            row("summits", &sm.gw);
+        }
+        for (title, rows) in [
+            (
+                "sampling (the map coarsened; GW parameters are not intrinsic to a surface)",
+                &r.sampling,
+            ),
+            ("scan size (tiles of the map)", &r.scan_size),
+        ] {
+            if rows.is_empty() {
+                continue;
+            }
+            let _ = writeln!(s, "\n{title}:");
+            let _ = writeln!(
+                s,
+                "  {:>6} {:>11} {:>11} {:>12} {:>12} {:>12} {:>12}",
+                "factor", "dx", "scan", "sigma_s sp.", "N spectral", "sigma_s sum.", "N summits"
+            );
+            for row in rows.iter() {
+                let (ss, ns) = row.summits.map_or(("-".to_string(), "-".to_string()), |g| {
+                    (si(g.sigma_s, "m", 3), format!("{:.3e}", g.asperity_density))
+                });
+                let _ = writeln!(
+                    s,
+                    "  {:>6} {:>11} {:>11} {:>12} {:>12.3e} {:>12} {:>12}",
+                    row.factor,
+                    si(row.dx, "m", 3),
+                    si(row.scan_x, "m", 3),
+                    si(row.spectral.sigma_s, "m", 3),
+                    row.spectral.asperity_density,
+                    ss,
+                    ns
+                );
+            }
+        }
+        for w in &r.warnings {
+            let _ = writeln!(s, "warning[{}]: {}", w.code, w.message);
+        }
+        let _ = writeln!(s, "\n{}", self.fragment.trim_end());
+        s
+    }
+
+    fn csv(&self) -> String {
+        let r = &self.report;
+        let mut s = String::from("route,sigma_s_m,asperity_density_per_m2,radius_m,offset_m\n");
+        let mut row = |name: &str, gw: &stiction_model::topography::GwParameters| {
+            let _ = writeln!(
+                s,
+                "{name},{:e},{:e},{:e},{:e}",
+                gw.sigma_s, gw.asperity_density, gw.radius, gw.offset
+            );
+        };
+        row("spectral", &r.spectral.gw);
+        if let Some(sm) = &r.summits {
+            row("summits", &sm.gw);
+        }
+        s
+    }
+
+    fn warnings(&self) -> &[Warning] {
+        &self.warnings
+    }
+
+    fn validity(&self) -> Option<&Validity> {
+        None
+    }
+}
+
+/// The height map (a colour picture), the summit heights against the Gaussian the model
+/// assumes, and the radially averaged PSD.
+pub fn plot_svg(r: &TopographyReport) -> Result<String, String> {
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, (1200, 420)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let panels = root.split_evenly((1, 3));
+        let e = |e: &dyn std::fmt::Display| e.to_string();
+        // the height map
+        let m = &r.plots.height_map;
+        let (zmin, zmax) =
+            m.z.iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &z| {
+                    (a.min(z), b.max(z))
+                });
+        let (w, h) = (m.nx as f64 * m.dx * 1e6, m.ny as f64 * m.dy * 1e6);
+        let mut c = ChartBuilder::on(&panels[0])
+            .caption("height map (detrended)", ("sans-serif", 16))
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(45)
+            .build_cartesian_2d(0.0..w, 0.0..h)
+            .map_err(|x| e(&x))?;
+        c.configure_mesh()
+            .disable_mesh()
+            .x_desc("x [um]")
+            .y_desc("y [um]")
+            .draw()
+            .map_err(|x| e(&x))?;
+        let span = (zmax - zmin).max(f64::MIN_POSITIVE);
+        c.draw_series((0..m.ny).flat_map(|j| {
+            (0..m.nx).map(move |i| {
+                let v = (m.z[j * m.nx + i] - zmin) / span;
+                let g = (255.0 * v) as u8;
+                Rectangle::new(
+                    [
+                        (i as f64 * m.dx * 1e6, j as f64 * m.dy * 1e6),
+                        ((i + 1) as f64 * m.dx * 1e6, (j + 1) as f64 * m.dy * 1e6),
+                    ],
+                    RGBColor(g, g, (64.0 + 191.0 * v) as u8).filled(),
+                )
+            })
+        }))
+        .map_err(|x| e(&x))?;
+        // summit heights against the Gaussian
+        let hist = &r.plots.summit_heights;
+        let xs: Vec<f64> = hist.centres.iter().map(|x| x * 1e9).collect();
+        let ymax = hist
+            .density
+            .iter()
+            .chain(&hist.gaussian)
+            .fold(0.0f64, |a, &b| a.max(b))
+            * 1e-9
+            * 1.1;
+        let (x0, x1) = (
+            xs.first().copied().unwrap_or(-1.0),
+            xs.last().copied().unwrap_or(1.0),
+        );
+        let mut c = ChartBuilder::on(&panels[1])
+            .caption(
+                "summit heights vs the Gaussian of the model",
+                ("sans-serif", 16),
+            )
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(55)
+            .build_cartesian_2d(x0..x1.max(x0 + 1e-9), 0.0..ymax.max(1e-12))
+            .map_err(|x| e(&x))?;
+        c.configure_mesh()
+            .disable_mesh()
+            .x_desc("height above the mean plane [nm]")
+            .y_desc("density [1/nm]")
+            .draw()
+            .map_err(|x| e(&x))?;
+        let half = 0.5 * hist.width * 1e9;
+        c.draw_series(xs.iter().zip(&hist.density).map(|(&x, &d)| {
+            Rectangle::new(
+                [(x - half, 0.0), (x + half, d * 1e-9)],
+                RGBColor(120, 150, 220).filled(),
+            )
+        }))
+        .map_err(|x| e(&x))?
+        .label("summits")
+        .legend(|(x, y)| {
+            Rectangle::new(
+                [(x, y - 4), (x + 12, y + 4)],
+                RGBColor(120, 150, 220).filled(),
+            )
+        });
+        c.draw_series(LineSeries::new(
+            xs.iter().zip(&hist.gaussian).map(|(&x, &g)| (x, g * 1e-9)),
+            BLACK.stroke_width(2),
+        ))
+        .map_err(|x| e(&x))?
+        .label("N(offset, sigma_s)")
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 12, y)], BLACK.stroke_width(2)));
+        c.configure_series_labels()
+            .border_style(BLACK)
+            .background_style(WHITE)
+            .draw()
+            .map_err(|x| e(&x))?;
+        // the PSD
+        let pts: Vec<(f64, f64)> = r
+            .plots
+            .psd
+            .iter()
+            .filter(|p| p.q > 0.0 && p.c > 0.0)
+            .map(|p| (p.q.log10(), p.c.log10()))
+            .collect();
+        let (qa, qb, ca, cb) = pts.iter().fold(
+            (
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            ),
+            |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+        );
+        if pts.len() >= 2 {
+            let mut c = ChartBuilder::on(&panels[2])
+                .caption("PSD, radially averaged", ("sans-serif", 16))
+                .margin(10)
+                .x_label_area_size(35)
+                .y_label_area_size(55)
+                .build_cartesian_2d(qa..qb.max(qa + 1e-6), ca..cb.max(ca + 1e-6))
+                .map_err(|x| e(&x))?;
+            c.configure_mesh()
+                .disable_mesh()
+                .x_desc("log10 q [rad/m]")
+                .y_desc("log10 C(q) [m^4]")
+                .draw()
+                .map_err(|x| e(&x))?;
+            c.draw_series(LineSeries::new(pts, BLUE.stroke_width(2)))
+                .map_err(|x| e(&x))?;
+        }
+        root.present().map_err(|x| e(&x))?;
+    }
+    Ok(buf)
+}
