@@ -4,10 +4,12 @@
 //! independent held-out check: K points per scene at random off-grid histories and
 //! separations, the law file read back and evaluated against the surface itself (same
 //! accuracy mode, a generator and distribution of its own). Prints a table for
-//! docs/performance.md ("The contact law").
+//! docs/performance.md ("The contact law"). `--only K` tabulates scene K alone and prints
+//! it as a scene file on standard error.
 
 use std::io::IsTerminal;
 use std::time::Instant;
+use stiction_model::contact_core::Categorized;
 use stiction_model::contact_core::{Path as SurfacePath, SurfaceLaw};
 use stiction_model::contact_law::{ContactLaw, Path, Region};
 use stiction_model::gw_surface::GwHistory;
@@ -15,7 +17,6 @@ use stiction_model::law::{self, LawOptions, LawScene, DEFAULT_ACCURACY};
 use stiction_model::laws::LawRegistry;
 use stiction_model::scenegen::{self, Domain, Rng};
 use stiction_model::spec::SwitchSpec;
-use stiction_model::contact_core::Categorized;
 use stiction_model::{ModelError, Silent};
 
 /// The held-out check of one law: the largest error over `k` random points.
@@ -38,7 +39,9 @@ fn held_out(
         } else {
             Path::Retract
         };
-        let reach = file.reach(d_min, path).map_err(|e| ModelError::argument("law", e.to_string(), "a law"))?;
+        let reach = file
+            .reach(d_min, path)
+            .map_err(|e| ModelError::argument("law", e.to_string(), "a law"))?;
         let u = rng.unit();
         let d = d_min + (reach - d_min) * u * u * u;
         let e = file
@@ -63,7 +66,11 @@ fn held_out(
         .pull_out_pressure
         .abs();
         let err = (e.pressure - direct).abs() / (direct.abs() + po + floor);
-        worst = if err.is_nan() { f64::NAN } else { worst.max(err) };
+        worst = if err.is_nan() {
+            f64::NAN
+        } else {
+            worst.max(err)
+        };
     }
     Ok((worst, outside))
 }
@@ -82,6 +89,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
     let mut seed = 20261124u64;
     let mut domain = Domain::Mems;
     let mut k = 200usize;
+    let mut only: Option<usize> = None;
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match *a {
@@ -102,6 +110,13 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                     .next()
                     .and_then(|v| v.parse().ok())
                     .ok_or("--held-out needs a count")?
+            }
+            "--only" => {
+                only = Some(
+                    it.next()
+                        .and_then(|v| v.parse().ok())
+                        .ok_or("--only needs a scene number")?,
+                )
             }
             "--domain" => {
                 domain = match it.next().copied() {
@@ -129,6 +144,12 @@ pub fn main(args: &[&str]) -> Result<(), String> {
             continue;
         };
         scenes += 1;
+        if only.is_some_and(|o| o != scenes) {
+            continue;
+        }
+        if only.is_some() {
+            eprintln!("{}", scenegen::to_toml(&s.common.scene));
+        }
         let c = &s.contact;
         let what = format!(
             "{} / {} / eq 1 {} / reload {}",
@@ -173,7 +194,9 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                     && e.to_string().contains("does not close") =>
             {
                 no_range += 1;
-                rows += &format!("| {scenes} | {what} | | | | | | no default range: {e} | {secs:.1} | |\n");
+                rows += &format!(
+                    "| {scenes} | {what} | | | | | | no default range: {e} | {secs:.1} | |\n"
+                );
             }
             Err(e) => {
                 failed += 1;

@@ -934,10 +934,13 @@ impl Check {
     }
 
     fn max_error(&self, law: &ContactLaw) -> Result<f64, LawError> {
-        Ok(self
-            .errors(law)?
-            .into_iter()
-            .fold(0.0, |m: f64, e| if e.0.is_nan() { f64::NAN } else { m.max(e.0) }))
+        Ok(self.errors(law)?.into_iter().fold(0.0, |m: f64, e| {
+            if e.0.is_nan() {
+                f64::NAN
+            } else {
+                m.max(e.0)
+            }
+        }))
     }
 }
 
@@ -1077,9 +1080,7 @@ impl Table {
                 let e = c.max_error(&law)?;
                 if !(e <= tol) || forced {
                     let width = self.built[k + 1].d_min - self.built[k].d_min;
-                    if adaptive
-                        && width > h_min
-                        && self.built.len() + split.len() < o.max_branches
+                    if adaptive && width > h_min && self.built.len() + split.len() < o.max_branches
                     {
                         split.push(k);
                     } else if !(e <= tol) {
@@ -1472,7 +1473,13 @@ fn statistics(
 ) -> Result<MeasuredError, LawError> {
     let mut kinds: [Vec<(f64, f64, f64)>; 3] = [Vec::new(), Vec::new(), Vec::new()];
     let n = law.branches.len();
-    let mut per = vec![BranchError { approach: 0.0, retract: 0.0 }; n];
+    let mut per = vec![
+        BranchError {
+            approach: 0.0,
+            retract: 0.0
+        };
+        n
+    ];
     let grid = law.grid.clone();
     for s in samples {
         let i = match s.path {
@@ -1482,7 +1489,10 @@ fn statistics(
         };
         kinds[i].push((s.e, s.d, s.d_min));
         if let Some(path) = s.path {
-            let k = grid.partition_point(|&g| g <= s.d_min).saturating_sub(1).min(n - 1);
+            let k = grid
+                .partition_point(|&g| g <= s.d_min)
+                .saturating_sub(1)
+                .min(n - 1);
             let slot = match path {
                 Path::Approach => &mut per[k].approach,
                 Path::Retract => &mut per[k].retract,

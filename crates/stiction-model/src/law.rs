@@ -603,15 +603,20 @@ fn first_touch(
     let p_v =
         |d: f64| -> Result<f64, ModelError> { Ok(gw.pressure(d, &virgin, SurfacePath::Approach)?) };
     let pull = |d: f64| -> Result<f64, ModelError> {
-        Ok(switch_1d::unload(gw, &GwHistory::Flat { deepest: d }, d, 0, precision)?
-            .pull_out_pressure
-            .abs())
+        Ok(
+            switch_1d::unload(gw, &GwHistory::Flat { deepest: d }, d, 0, precision)?
+                .pull_out_pressure
+                .abs(),
+        )
     };
     // the largest root of g = |p(d)| - floor below the reach, stepping down by sigma_s/4
     let largest_root = |g: &dyn Fn(f64) -> Result<f64, ModelError>,
                         from: f64|
      -> Result<Option<f64>, ModelError> {
-        let top = Sample { x: from, f: g(from)? };
+        let top = Sample {
+            x: from,
+            f: g(from)?,
+        };
         if top.f >= 0.0 {
             return Ok(Some(from));
         }
