@@ -370,7 +370,11 @@ fn positive_tangent(c: &Curve, origin: f64) -> Option<PositiveTangent> {
     if !(best_t > 0.0) {
         return None;
     }
-    let relative_rise = if p[0] > 0.0 { rise / p[0] } else { rise / scale };
+    let relative_rise = if p[0] > 0.0 {
+        rise / p[0]
+    } else {
+        rise / scale
+    };
     Some(PositiveTangent {
         d: origin + best_x,
         tangent: best_t,
@@ -893,6 +897,25 @@ impl ContactLaw {
                 Ok(r) => state.d_turn >= r,
                 Err(_) => false,
             },
+        }
+    }
+
+    /// Where a history `d_min` (m) lies relative to the table: [`Region::BelowTable`] deeper
+    /// than the deepest branch (evaluation there is an error), [`Region::Measured`] within
+    /// the tabulated range, [`Region::AboveTable`] between the shallowest branch and the
+    /// virgin reach (the law blends to zero there, not measured), [`Region::BeyondReach`]
+    /// at or beyond the virgin reach, including `+inf` (a surface never touched: the law
+    /// is exactly zero there, as the model is). NaN is below the table (no value).
+    pub fn history_region(&self, d_min: f64) -> Region {
+        let (lo, hi) = self.d_min_range();
+        if !(d_min >= lo) {
+            Region::BelowTable
+        } else if d_min <= hi {
+            Region::Measured
+        } else if d_min < self.virgin.reach() {
+            Region::AboveTable
+        } else {
+            Region::BeyondReach
         }
     }
 
