@@ -56,7 +56,7 @@ pub enum Command {
     /// ratio, merge of map shards.
     Design(DesignCommand),
     /// Greenwood-Williamson parameters (sigma_s, asperity density, radius) of a measured
-    /// height map, by spectral moments and by summits, with a [surface] scene fragment.
+    /// height map, by spectral moments and by summits, with a `[surface]` scene fragment.
     Topography(TopographyCommand),
 }
 

@@ -495,8 +495,11 @@ fn eval_point(
     })
 }
 
-/// The points of a `--points-file`: (line number, d, d_min, path).
-fn read_points(name: &str, text: &str) -> Result<Vec<(usize, f64, Option<f64>, LawPath)>, Error> {
+/// A point of a `--points-file`: its line number, d, d_min (None: virgin) and path.
+type PointLine = (usize, f64, Option<f64>, LawPath);
+
+/// The points of a `--points-file`.
+fn read_points(name: &str, text: &str) -> Result<Vec<PointLine>, Error> {
     let bad = |line: usize, what: String| {
         Error::usage("--points-file", format!("{name} line {line}: {what}"))
     };

@@ -45,7 +45,7 @@ pub enum RouteArg {
 }
 
 /// Greenwood-Williamson parameters (sigma_s, asperity density, radius) from a measured
-/// height map, two ways, with a [surface] scene fragment.
+/// height map, two ways, with a `[surface]` scene fragment.
 #[derive(Debug, Clone, clap::Args)]
 pub struct TopographyCommand {
     /// The height map: a text matrix, x/y/z columns, .npy, Gwyddion .gwy or .gsf, or

@@ -970,8 +970,8 @@ impl ContactLaw {
         let g = &self.grid[first..first + len];
         let c = lagrange(g, d_min);
         let mut ln_s = 0.0;
-        for j in 0..len {
-            ln_s += c[j] * self.branches[first + j].ln_scale;
+        for (cj, b) in c.iter().zip(&self.branches[first..first + len]) {
+            ln_s += cj * b.ln_scale;
         }
         let (g0, g1) = (self.grid[k], self.grid[k + 1]);
         Ok(Bracket::Between {
@@ -1019,10 +1019,9 @@ impl ContactLaw {
             } => {
                 let (mut p, mut t, mut start) = (0.0, 0.0, 0.0);
                 let mut end: f64 = 0.0;
-                for j in 0..len {
-                    let b = &self.branches[first + j];
+                for (cj, b) in c.iter().zip(&self.branches[first..first + len]) {
                     let cu = b.curve(path);
-                    let a = c[j] * scale * b.inv_scale;
+                    let a = cj * scale * b.inv_scale;
                     let (pj, tj) = cu.at_x(x);
                     p += a * pj;
                     t += a * tj;

@@ -67,7 +67,7 @@ fn outside(d: Domain) -> [Option<f64>; 2] {
             [Some(below), Some(above)]
         }
         Domain::RangeOrInfinite { lo } => [Some(lo - lo.abs() * 1e-9), None],
-        Domain::Count { lo, hi } => [(lo > 0).then(|| lo as f64 - 1.0), Some(hi as f64 + 1.0)],
+        Domain::Count { lo, hi } => [(lo > 0).then_some(lo as f64 - 1.0), Some(hi as f64 + 1.0)],
         _ => [None, None],
     }
 }
