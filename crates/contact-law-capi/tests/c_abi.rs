@@ -724,6 +724,12 @@ fn a_fortran_uinter_agrees_with_the_rust_evaluator_bit_for_bit() {
 fn the_header_states_the_regions_and_the_positive_retract_tangent() {
     let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let header = std::fs::read_to_string(manifest.join("include/stiction_contact_law.h")).unwrap();
+    // the comments as running text: line breaks and their leading " * " are spaces
+    let header = header
+        .lines()
+        .map(|l| l.trim().trim_start_matches("* ").trim_start_matches('*'))
+        .collect::<Vec<_>>()
+        .join(" ");
     for needle in [
         "SCL_BEYOND_REACH = 7",
         "SCL_ABOVE_TABLE = 8",
