@@ -3,8 +3,7 @@
 //!
 //! Each tabulation here is small (fast accuracy, a short uniform grid of histories or a
 //! loose tolerance) so that a test takes seconds in the test profile; the paper's default
-//! law is checked by the ignored `paper_default_law_meets_the_issue_tolerance` (about a
-//! minute in release).
+//! law, a few seconds since format version 2, by `paper_default_law_meets_the_issue_tolerance`.
 
 mod common;
 use common::{has_null, json, scene_with, stiction, temp_dir, temp_file};
@@ -74,7 +73,7 @@ fn law_writes_a_self_describing_json_and_the_long_csv() {
     let v = read_json(law_path);
     assert!(!has_null(&v));
     assert_eq!(v["format"], "stiction-contact-law");
-    assert_eq!(v["version"], 1);
+    assert_eq!(v["version"], 2);
     assert_eq!(v["units"]["d"], "m");
     assert_eq!(v["units"]["d_min"], "m");
     assert_eq!(v["units"]["pressure"], "Pa");
@@ -88,7 +87,16 @@ fn law_writes_a_self_describing_json_and_the_long_csv() {
         .unwrap()
         .contains("mean plane of asperity heights"));
     assert_eq!(v["interpolation"]["in_d"]["rule"], "steffen-1990");
-    assert_eq!(v["interpolation"]["in_d_min"]["rule"], "linear-at-fixed-x");
+    assert_eq!(
+        v["interpolation"]["in_d_min"]["rule"],
+        "scaled-cubic-at-fixed-x"
+    );
+    for k in ["measured", "beyond_reach", "above_table", "below_table"] {
+        assert!(
+            v["regions"][k].as_str().is_some_and(|t| !t.is_empty()),
+            "{k}"
+        );
+    }
     let m = &v["interpolation"]["measured_error"];
     for kind in ["virgin", "approach", "retract"] {
         assert!(
@@ -489,15 +497,22 @@ fn default_histories_run_from_the_first_touch_down_past_the_deepest_impact() {
     assert!((f(&h["d_min_lo"]) - (deepest - 0.5 * sigma)).abs() < 1e-6 * sigma);
     let hi = f(&h["d_min_hi"]);
     assert!(hi < f(&h["virgin_reach"]));
-    // the first touch: the virgin pressure there is 1e-3 of the deepest pull-out
+    // the first touch: the larger of the virgin pressure and the pull-out there is the
+    // pressure floor, first_touch_fraction (1e-5) of the deepest history's pressure scale
     let law = out.join("law.json");
-    let p_hi = f(&eval(&law, hi, None, "approach")["pressure"]);
-    let reference = f(&h["first_touch_reference"]);
-    assert!(
-        (p_hi / (1e-3 * reference) - 1.0).abs() < 0.05,
-        "p_V(hi) = {p_hi}, reference {reference}"
-    );
     let v = read_json(&law);
+    let p_hi = f(&eval(&law, hi, None, "approach")["pressure"]).abs();
+    let branches = v["branches"].as_array().unwrap();
+    let pull_hi = f(&branches[branches.len() - 1]["pull_out"]["pressure"]).abs();
+    let reference = f(&h["first_touch_reference"]);
+    assert_eq!(f(&h["first_touch_fraction"]), 1e-5);
+    let floor = f(&h["pressure_floor"]);
+    assert_eq!(floor, 1e-5 * reference);
+    assert_eq!(f(&v["interpolation"]["pressure_floor"]["value"]), floor);
+    assert!(
+        (p_hi.max(pull_hi) / floor - 1.0).abs() < 0.05,
+        "p_V(hi) = {p_hi}, pull-out {pull_hi}, floor {floor}"
+    );
     assert_eq!(v["tabulation"]["d_min_rule"], "adaptive");
     let grid = v["d_min_grid"].as_array().unwrap();
     assert!((f(&grid[0]) - f(&h["d_min_lo"])).abs() < 1e-20);
@@ -520,11 +535,11 @@ fn default_histories_run_from_the_first_touch_down_past_the_deepest_impact() {
     assert!(!has_null(&v));
 }
 
-/// The paper's default law (about a minute in release: `cargo test --release --test law
-/// -- --ignored`): converged, measured error within the issue's 1e-3, and the switch's
-/// own history inside the table.
+/// The paper's default law (2.4 s in release since format version 2, 42 s before):
+/// converged to its tolerance on every kind, with the scaled cubic rule needing a few
+/// tens of histories (the linear rule took 513), the switch's own history inside the
+/// table, within the issue's bound of 30 s for a plausible scene even on a loaded machine.
 #[test]
-#[ignore = "the paper's whole law takes about a minute in release; run with --ignored"]
 fn paper_default_law_meets_the_issue_tolerance() {
     let dir = temp_dir("law-paper");
     let out = dir.join("law");
@@ -536,9 +551,388 @@ fn paper_default_law_meets_the_issue_tolerance() {
         "json",
     ]));
     assert_eq!(report["converged"], true);
+    let tol = f(&report["tolerance"]);
+    assert_eq!(tol, 2e-4);
     for kind in ["virgin", "approach", "retract"] {
-        assert!(f(&report["measured_error"][kind]["max"]) < 1e-3, "{kind}");
+        let m = f(&report["measured_error"][kind]["max"]);
+        assert!(m <= tol, "{kind}: {m}");
     }
+    let n = report["branches"].as_u64().unwrap();
+    assert!((10..100).contains(&n), "{n} histories");
     let d_e = f(&report["histories"]["deepest_d_e"]);
     assert!(f(&report["histories"]["d_min_lo"]) < d_e);
+    assert!(d_e < f(&report["histories"]["d_min_hi"]));
+    assert!(f(&report["seconds"]) < 30.0, "{} s", report["seconds"]);
+}
+
+/// `law eval` states the region of every point (a public contract of `--format json`):
+/// measured inside the table, above_table for a history shallower than it, beyond_reach
+/// (exactly zero) past the branch's reach; deeper than the table is an error. The table
+/// form says when a value is not measured.
+#[test]
+fn law_eval_states_the_region_of_every_point() {
+    let law = shared_law();
+    let v = read_json(law);
+    let grid = v["d_min_grid"].as_array().unwrap();
+    let (lo, hi) = (f(&grid[0]), f(&grid[grid.len() - 1]));
+    let top = f(&v["virgin"]["reach"]);
+    let mid = 0.5 * (lo + hi);
+    let e = eval(law, mid + 1e-9, Some(mid), "retract");
+    assert_eq!(e["region"], "measured", "{e}");
+    let above = hi + 0.2 * (top - hi);
+    let e = eval(law, above + 1e-10, Some(above), "retract");
+    assert_eq!(e["region"], "above_table", "{e}");
+    assert!(f(&e["pressure"]).is_finite());
+    let e = eval(law, top + 1e-9, Some(mid), "approach");
+    assert_eq!(e["region"], "beyond_reach", "{e}");
+    assert_eq!((f(&e["pressure"]), f(&e["tangent"])), (0.0, 0.0));
+    // the virgin envelope from the deepest history to its reach is measured
+    assert_eq!(eval(law, mid, None, "approach")["region"], "measured");
+    // deeper than the table: exit 2, naming the region, no value
+    let d = format!("{:e}", lo - 1e-9);
+    fails(
+        &["law", "eval", "--law", law.to_str().unwrap(), "--d", &d],
+        &["below_table", "deeper"],
+    );
+    let a = format!("{above:e}");
+    let d = format!("{:e}", above + 1e-10);
+    let out = stiction(&[
+        "law",
+        "eval",
+        "--law",
+        law.to_str().unwrap(),
+        "--d",
+        &d,
+        "--d-min",
+        &a,
+        "--path",
+        "retract",
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("above_table") && text.contains("NOT measured"),
+        "{text}"
+    );
+}
+
+/// `law eval --points-file` evaluates many points in one process, from a file or standard
+/// input, each exactly as the one-point call does, and names the line of a bad point.
+#[test]
+fn law_eval_takes_many_points_per_process() {
+    let law = shared_law();
+    let l = law.to_str().unwrap();
+    let mut rows = vec![
+        (8.0e-9, None, "approach"),
+        (9.5e-9, Some(8.3e-9), "retract"),
+        (9.0e-9, Some(8.3e-9), "approach"),
+        (7.9e-9, Some(8.3e-9), "retract"),
+        (9.8e-9, Some(9.6e-9), "retract"),
+        (8e-8, Some(8e-9), "retract"),
+    ];
+    for i in 0..40 {
+        let d_min = 7.6e-9 + 1.6e-9 * (i as f64 / 39.0);
+        rows.push((d_min + 0.37e-9 * (i % 7) as f64, Some(d_min), "retract"));
+    }
+    let mut text = String::from("d,d_min,path\n# a comment\n");
+    for (d, m, p) in &rows {
+        text += &format!(
+            "{d:e},{},{p}\n",
+            m.map_or("virgin".to_string(), |v| format!("{v:e}"))
+        );
+    }
+    let dir = temp_dir("law-points");
+    let file = dir.join("points.csv");
+    std::fs::write(&file, &text).unwrap();
+    let batch = json(&stiction(&[
+        "law",
+        "eval",
+        "--law",
+        l,
+        "--points-file",
+        file.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
+    let pts = batch["points"].as_array().unwrap();
+    assert_eq!(pts.len(), rows.len());
+    let mut outside = 0;
+    for (k, (d, m, p)) in rows.iter().enumerate() {
+        let one = eval(law, *d, *m, p);
+        for key in ["pressure", "tangent", "d_min", "path", "curve", "region"] {
+            assert_eq!(pts[k][key], one[key], "point {k}, {key}");
+        }
+        outside += usize::from(one["region"] != "measured");
+    }
+    assert_eq!(pts[4]["region"], "above_table");
+    assert_eq!(pts[5]["region"], "beyond_reach");
+    assert!(outside >= 2, "the rows reach outside the measured region");
+    assert_eq!(batch["outside_measured"], outside);
+    // standard input, CSV out: one row per point with its region
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_stiction"))
+        .args([
+            "law",
+            "eval",
+            "--law",
+            l,
+            "--points-file",
+            "-",
+            "--format",
+            "csv",
+        ])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    use std::io::Write as _;
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(text.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success());
+    let csv = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), rows.len() + 1);
+    assert!(lines[0].contains("region"));
+    assert!(
+        lines[6].ends_with(",beyond_reach,8e-9,retract"),
+        "{}",
+        lines[6]
+    );
+    // a bad point: its line named
+    std::fs::write(&file, "8e-9,,approach\n9e-9,8e-9,sideways\n").unwrap();
+    fails(
+        &[
+            "law",
+            "eval",
+            "--law",
+            l,
+            "--points-file",
+            file.to_str().unwrap(),
+        ],
+        &["--points-file", "line 2", "sideways"],
+    );
+    std::fs::write(&file, "8e-9,,approach\n1e-9,,approach\n").unwrap();
+    fails(
+        &[
+            "law",
+            "eval",
+            "--law",
+            l,
+            "--points-file",
+            file.to_str().unwrap(),
+        ],
+        &["line 2", "below_table"],
+    );
+    fails(
+        &[
+            "law",
+            "eval",
+            "--law",
+            l,
+            "--points-file",
+            file.to_str().unwrap(),
+            "--d",
+            "8e-9",
+        ],
+        &["--d"],
+    );
+}
+
+/// A surface scene is the natural input of an FE analyst: its law goes down to the
+/// scene's unload_from by default, or over a `--d-min` grid; without either the command
+/// says what to give, before any work.
+#[test]
+fn law_accepts_a_surface_scene() {
+    let base = scene_with("surface", &[("accuracy", "accuracy = \"fast\"")]);
+    let with = temp_file(
+        "law-surface",
+        base.replace("unload_from = 5e-9", "unload_from = 8e-9")
+            .as_bytes(),
+    );
+    let dir = temp_dir("law-surface");
+    let out = dir.join("law");
+    let report = json(&stiction(&[
+        "law",
+        "--scene",
+        with.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--tolerance",
+        "0.05",
+        "--points",
+        "8",
+        "--format",
+        "json",
+    ]));
+    let h = &report["histories"];
+    assert_eq!(f(&h["d_min_lo"]), 8e-9, "{h}");
+    assert!(f(&h["d_min_hi"]) > 8e-9 && f(&h["d_min_hi"]) < f(&h["virgin_reach"]));
+    assert!(h["description"].as_str().unwrap().contains("unload_from"));
+    let v = read_json(&out.join("law.json"));
+    assert_eq!(v["scene"]["resolved"]["kind"], "surface");
+    // the law's virgin pressure at unload_from is the surface's own loading
+    let direct = json(&stiction(&[
+        "surface",
+        "--scene",
+        with.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
+    let pull = f(&direct["pull_out_pressure"]);
+    let retract = direct["unloading"].as_array().unwrap();
+    let law = out.join("law.json");
+    for p in retract.iter().step_by(20).take(5) {
+        let e = eval(&law, f(&p["d"]), Some(8e-9), "retract");
+        let err = (f(&e["pressure"]) - f(&p["pressure"])).abs() / (f(&p["pressure"]).abs() + pull);
+        assert!(err < 0.05, "{e} vs {p}");
+    }
+
+    // no unload_from and no --d-min: refused naming both, before any work
+    let without = temp_file(
+        "law-surface-bare",
+        base.lines()
+            .filter(|l| !l.starts_with("unload_from"))
+            .collect::<Vec<_>>()
+            .join("\n")
+            .as_bytes(),
+    );
+    fails(
+        &[
+            "law",
+            "--scene",
+            without.to_str().unwrap(),
+            "--out",
+            dir.join("x").to_str().unwrap(),
+        ],
+        &["unload_from", "FROM:TO:N"],
+    );
+    // with a grid it tabulates
+    let report = json(&stiction(&[
+        "law",
+        "--scene",
+        without.to_str().unwrap(),
+        "--out",
+        dir.join("grid").to_str().unwrap(),
+        "--d-min",
+        "8e-9:9e-9:3",
+        "--points",
+        "8",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(report["branches"], 3);
+}
+
+/// `--out` is checked before the tabulation: a folder that cannot be written is refused
+/// before any work, so its error comes before those of the computation (here a surface
+/// scene without unload_from, whose default range the tabulation would refuse).
+#[test]
+fn law_checks_out_before_tabulating() {
+    let dir = temp_dir("law-out-first");
+    let file = dir.join("a-file");
+    std::fs::write(&file, b"not a folder").unwrap();
+    let bare = scene_with("surface", &[("accuracy", "accuracy = \"fast\"")])
+        .lines()
+        .filter(|l| !l.starts_with("unload_from"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let scene = temp_file("law-out-first", bare.as_bytes());
+    let s = scene.to_str().unwrap();
+    let out = stiction(&["law", "--scene", s, "--out", file.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("a-file") && !err.contains("unload_from"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&file).unwrap(), b"not a folder");
+    // with a writable folder the same scene gets to the tabulation's own check
+    fails(
+        &[
+            "law",
+            "--scene",
+            s,
+            "--out",
+            dir.join("new").to_str().unwrap(),
+        ],
+        &["unload_from"],
+    );
+    assert!(!dir.join("new").exists());
+}
+
+/// A film pressed far beyond yield with the eq-12 reload as printed: its retract branches
+/// rise before the pull-out (a positive tangent, a negative unloading stiffness for an
+/// implicit FE code). The file, the summary and a warning say so, the law evaluates that
+/// positive tangent where the file says, and the bounded reload reading removes it.
+#[test]
+fn a_positive_retract_tangent_is_flagged_and_the_bounded_reload_removes_it() {
+    let scene = |reload: &str| {
+        temp_file(
+            &format!("law-rise-{reload}"),
+            scene_with(
+                "surface",
+                &[
+                    ("accuracy", "accuracy = \"fast\""),
+                    ("yield_stress", "yield_stress = 1e9"),
+                    ("reload", &format!("reload = \"{reload}\"")),
+                ],
+            )
+            .as_bytes(),
+        )
+    };
+    let dir = temp_dir("law-rise");
+    let run = |reload: &str| {
+        let out = dir.join(reload);
+        let s = scene(reload);
+        let report = json(&stiction(&[
+            "law",
+            "--scene",
+            s.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--d-min=-1.5e-8:-5e-9:3",
+            "--points",
+            "16",
+            "--format",
+            "json",
+        ]));
+        (report, out.join("law.json"))
+    };
+    let (report, law) = run("as_printed");
+    let v = read_json(&law);
+    let p = &v["positive_retract_tangent"];
+    assert_eq!(p["branches"], 3, "{p}");
+    assert!(f(&p["largest_relative_rise"]) > 0.01, "{p}");
+    assert!(p["advice"].as_str().unwrap().contains("bounded"), "{p}");
+    let worst = &p["worst"];
+    assert!(f(&worst["tangent"]) > 0.0);
+    // the law itself rises there: a positive tangent on the retract path
+    let e = eval(&law, f(&worst["d"]), Some(f(&worst["d_min"])), "retract");
+    assert!(f(&e["tangent"]) > 0.0, "{e}");
+    for b in v["branches"].as_array().unwrap() {
+        assert!(f(&b["retract"]["positive_tangent"]["tangent"]) > 0.0, "{b}");
+    }
+    assert_eq!(report["positive_retract_tangent"]["branches"], 3);
+    assert!(report["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|w| w["code"] == "positive_retract_tangent"));
+    // the bounded reload: no rise, no key, no warning
+    let (report, law) = run("bounded");
+    let v = read_json(&law);
+    assert!(
+        v.get("positive_retract_tangent").is_none(),
+        "{}",
+        v["positive_retract_tangent"]
+    );
+    assert!(report.get("positive_retract_tangent").is_none());
+    assert!(!report["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|w| w["code"] == "positive_retract_tangent"));
 }

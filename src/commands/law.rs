@@ -14,7 +14,7 @@ use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use stiction_model::contact_law::tabulate::GridSpec;
-use stiction_model::contact_law::{ContactLaw, Path as LawPath};
+use stiction_model::contact_law::{ContactLaw, LawError, Path as LawPath};
 use stiction_model::keys::Kind;
 use stiction_model::law::{self, Histories, LawOptions, LawResult, LawScene, DEFAULT_POINTS};
 use stiction_model::spec::Spec;
@@ -364,22 +364,36 @@ impl From<PathArg> for LawPath {
     }
 }
 
-/// Evaluate a law file at one point (stateless): d < d_min deepens the history (the
-/// virgin envelope, d_min becomes d); otherwise the branch `--path` of d_min.
+/// Evaluate a law file (stateless) at one point (`--d`, `--d-min`, `--path`) or at many
+/// (`--points-file`): d < d_min deepens the history (the virgin envelope, d_min becomes d);
+/// otherwise the branch `path` of d_min. Each result says its region: `measured` inside
+/// the tabulated histories and the curve's reach, else `beyond_reach` (exactly zero) or
+/// `above_table` (a history shallower than the table: a blend to zero, not measured); a
+/// history deeper than the table is an error.
 #[derive(Debug, Clone, clap::Args)]
 pub struct EvalCommand {
     /// The law file (law.json written by `stiction law`).
     #[arg(long)]
     pub law: PathBuf,
     /// Separation d (m) from the mean plane of asperity heights to the flat.
-    #[arg(long, allow_hyphen_values = true)]
-    pub d: f64,
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        required_unless_present = "points_file",
+        conflicts_with = "points_file"
+    )]
+    pub d: Option<f64>,
     /// The deepest separation reached before (m); absent: a virgin surface.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "points_file")]
     pub d_min: Option<f64>,
     /// The path at d: approach (from far or reloading) or retract.
-    #[arg(long, value_enum, default_value_t = PathArg::Approach)]
-    pub path: PathArg,
+    #[arg(long, value_enum, conflicts_with = "points_file")]
+    pub path: Option<PathArg>,
+    /// Many points in one process: a CSV file (`-`: standard input) with the columns
+    /// `d,d_min,path` (m, m, approach|retract); d_min empty or `virgin` for a virgin surface,
+    /// path empty for approach; a header line and lines starting with # are skipped.
+    #[arg(long, value_name = "FILE")]
+    pub points_file: Option<PathBuf>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Table)]
     pub format: Format,
@@ -396,9 +410,15 @@ pub struct EvalUnits {
     pub tangent: &'static str,
 }
 
-/// `stiction law eval`.
+const UNITS: EvalUnits = EvalUnits {
+    d: "m",
+    pressure: "Pa",
+    tangent: "Pa/m",
+};
+
+/// One evaluated point of `stiction law eval`.
 #[derive(Debug, Clone, Serialize)]
-pub struct EvalReport {
+pub struct EvalPoint {
     /// Pressure (Pa), compressive positive, adhesive negative.
     pub pressure: f64,
     /// dp/dd (Pa/m) at fixed history.
@@ -409,6 +429,11 @@ pub struct EvalReport {
     pub path: &'static str,
     /// The curve evaluated: `virgin`, `approach` or `retract`.
     pub curve: &'static str,
+    /// Where the point lies: `measured` (inside the tabulated histories and the curve's
+    /// reach: the file's measured error applies), `beyond_reach` (exactly zero: no asperity
+    /// in contact) or `above_table` (a history shallower than the table: the law's blend to
+    /// zero, not measured). A public contract.
+    pub region: &'static str,
     /// The separation asked (m).
     pub d: f64,
     /// The history given (m), absent for a virgin surface.
@@ -416,6 +441,14 @@ pub struct EvalReport {
     pub d_min_given: Option<f64>,
     /// The path given.
     pub path_given: &'static str,
+}
+
+/// `stiction law eval` at one point.
+#[derive(Debug, Clone, Serialize)]
+pub struct EvalReport {
+    /// The point.
+    #[serde(flatten)]
+    pub point: EvalPoint,
     /// The tabulated histories of the law (m).
     pub law_d_min_range: [f64; 2],
     /// The law file.
@@ -424,56 +457,220 @@ pub struct EvalReport {
     pub units: EvalUnits,
 }
 
+/// `stiction law eval --points-file`.
+#[derive(Debug, Clone, Serialize)]
+pub struct EvalBatch {
+    /// The points, in the order of the file.
+    pub points: Vec<EvalPoint>,
+    /// How many lie outside the measured region.
+    pub outside_measured: usize,
+    /// The tabulated histories of the law (m).
+    pub law_d_min_range: [f64; 2],
+    /// The law file.
+    pub law: String,
+    /// Units.
+    pub units: EvalUnits,
+}
+
+/// Evaluates one point.
+fn eval_point(
+    law: &ContactLaw,
+    d: f64,
+    d_min: Option<f64>,
+    path: LawPath,
+) -> Result<EvalPoint, LawError> {
+    let given = d_min.unwrap_or(f64::INFINITY);
+    let e = law.evaluate(d, given, path)?;
+    let deepened = d < given;
+    Ok(EvalPoint {
+        pressure: e.pressure,
+        tangent: e.tangent,
+        d_min: e.d_min,
+        path: e.path.as_str(),
+        curve: if deepened { "virgin" } else { e.path.as_str() },
+        region: e.region.as_str(),
+        d,
+        d_min_given: d_min.filter(|v| v.is_finite()),
+        path_given: path.as_str(),
+    })
+}
+
+/// A point of a `--points-file`: its line number, d, d_min (None: virgin) and path.
+type PointLine = (usize, f64, Option<f64>, LawPath);
+
+/// The points of a `--points-file`.
+fn read_points(name: &str, text: &str) -> Result<Vec<PointLine>, Error> {
+    let bad = |line: usize, what: String| {
+        Error::usage("--points-file", format!("{name} line {line}: {what}"))
+    };
+    let mut out = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let n = i + 1;
+        let l = raw.trim();
+        if l.is_empty() || l.starts_with('#') {
+            continue;
+        }
+        let f: Vec<&str> = l.split(',').map(str::trim).collect();
+        if out.is_empty() && f[0].eq_ignore_ascii_case("d") {
+            continue; // the header
+        }
+        if f.len() > 3 {
+            return Err(bad(
+                n,
+                format!("{} columns in {l:?}: at most 3 (d,d_min,path)", f.len()),
+            ));
+        }
+        let d: f64 = f[0]
+            .parse()
+            .map_err(|_| bad(n, format!("d = {:?}: must be a number (m)", f[0])))?;
+        if !d.is_finite() {
+            return Err(bad(n, format!("d = {}: must be finite (m)", f[0])));
+        }
+        let d_min = match f.get(1).copied().unwrap_or("") {
+            "" | "virgin" => None,
+            v => {
+                let x: f64 = v.parse().map_err(|_| {
+                    bad(
+                        n,
+                        format!("d_min = {v:?}: must be a number (m), empty or virgin"),
+                    )
+                })?;
+                if x.is_nan() || x == f64::NEG_INFINITY {
+                    return Err(bad(
+                        n,
+                        format!("d_min = {v}: must be finite, or empty for a virgin surface"),
+                    ));
+                }
+                x.is_finite().then_some(x)
+            }
+        };
+        let path = match f.get(2).copied().unwrap_or("") {
+            "" | "approach" => LawPath::Approach,
+            "retract" => LawPath::Retract,
+            v => return Err(bad(n, format!("path = {v:?}: must be approach or retract"))),
+        };
+        out.push((n, d, d_min, path));
+    }
+    if out.is_empty() {
+        return Err(Error::usage(
+            "--points-file",
+            format!("{name}: no points (lines d,d_min,path)"),
+        ));
+    }
+    Ok(out)
+}
+
 impl EvalCommand {
     /// Reads the law and evaluates it.
     pub fn execute(&self) -> Result<String, Error> {
+        // the points first: a bad points file is refused before the law is read
+        let batch = match &self.points_file {
+            Some(p) => {
+                let (name, text) = if p.as_os_str() == "-" {
+                    let mut t = String::new();
+                    std::io::Read::read_to_string(&mut std::io::stdin(), &mut t).map_err(|e| {
+                        Error::usage("--points-file", format!("standard input: {e}"))
+                    })?;
+                    ("standard input".to_string(), t)
+                } else {
+                    let name = p.display().to_string();
+                    let t = std::fs::read_to_string(p)
+                        .map_err(|e| Error::usage("--points-file", format!("{name}: {e}")))?;
+                    (name, t)
+                };
+                Some(read_points(&name, &text)?)
+            }
+            None => None,
+        };
         let file = self.law.display().to_string();
         let law = ContactLaw::from_path(&self.law).map_err(|source| Error::LawFile {
             file: file.clone(),
             source,
         })?;
-        let d_min = self.d_min.unwrap_or(f64::INFINITY);
-        let e = law.evaluate(self.d, d_min, self.path.into())?;
-        let deepened = self.d < d_min;
-        let report = EvalReport {
-            pressure: e.pressure,
-            tangent: e.tangent,
-            d_min: e.d_min,
-            path: e.path.as_str(),
-            curve: if deepened { "virgin" } else { e.path.as_str() },
-            d: self.d,
-            d_min_given: self.d_min.filter(|v| v.is_finite()),
-            path_given: LawPath::from(self.path).as_str(),
-            law_d_min_range: {
-                let (lo, hi) = law.d_min_range();
-                [lo, hi]
-            },
-            law: file,
-            units: EvalUnits {
-                d: "m",
-                pressure: "Pa",
-                tangent: "Pa/m",
-            },
+        let range = {
+            let (lo, hi) = law.d_min_range();
+            [lo, hi]
         };
-        Ok(report.render(self.format, false))
+        match batch {
+            None => {
+                let d = self.d.ok_or_else(|| Error::usage("--d", "is required"))?;
+                let path = self.path.unwrap_or(PathArg::Approach).into();
+                let point = eval_point(&law, d, self.d_min, path)?;
+                let report = EvalReport {
+                    point,
+                    law_d_min_range: range,
+                    law: file,
+                    units: UNITS,
+                };
+                Ok(report.render(self.format, false))
+            }
+            Some(points) => {
+                let mut out = Vec::with_capacity(points.len());
+                for (line, d, d_min, path) in points {
+                    let p = eval_point(&law, d, d_min, path).map_err(|e| {
+                        Error::usage("--points-file", format!("line {line} (d = {d:e} m): {e}"))
+                    })?;
+                    out.push(p);
+                }
+                let outside_measured = out.iter().filter(|p| p.region != "measured").count();
+                let batch = EvalBatch {
+                    points: out,
+                    outside_measured,
+                    law_d_min_range: range,
+                    law: file,
+                    units: UNITS,
+                };
+                Ok(batch.render(self.format, false))
+            }
+        }
     }
+}
+
+/// The words of a region for the table.
+fn region_words(region: &str) -> &'static str {
+    match region {
+        "measured" => "measured (the file's measured error applies)",
+        "beyond_reach" => "beyond_reach (no asperity in contact: exactly zero)",
+        _ => "above_table (a history shallower than the table: the law's blend to zero, NOT measured against the surface)",
+    }
+}
+
+/// The CSV columns: d, the history and path after the call, pressure, tangent, region,
+/// the history and path given.
+const CSV_HEADER: &str =
+    "d_m,d_min_m,path,pressure_pa,tangent_pa_per_m,region,d_min_given_m,path_given\n";
+
+fn csv_row(p: &EvalPoint) -> String {
+    format!(
+        "{:e},{:e},{},{:e},{:e},{},{},{}\n",
+        p.d,
+        p.d_min,
+        p.path,
+        p.pressure,
+        p.tangent,
+        p.region,
+        p.d_min_given
+            .map_or("virgin".to_string(), |v| format!("{v:e}")),
+        p.path_given
+    )
 }
 
 impl Render for EvalReport {
     fn table(&self) -> String {
+        let p = &self.point;
         let mut s = String::new();
-        let given = self.d_min_given.map_or("virgin surface".to_string(), |v| {
+        let given = p.d_min_given.map_or("virgin surface".to_string(), |v| {
             format!("d_min = {}", render::si(v, "m", 6))
         });
         let _ = writeln!(
             s,
             "law {} at d = {}, {}, path {}",
             self.law,
-            render::si(self.d, "m", 6),
+            render::si(p.d, "m", 6),
             given,
-            self.path_given
+            p.path_given
         );
-        let curve = match self.curve {
+        let curve = match p.curve {
             "virgin" => "the virgin envelope (the history deepens)",
             "approach" => "the approach branch of d_min",
             _ => "the retract branch of d_min",
@@ -482,26 +679,66 @@ impl Render for EvalReport {
         let _ = writeln!(
             s,
             "pressure = {:e} Pa ({}, compressive positive)",
-            self.pressure,
-            render::pressure(self.pressure)
+            p.pressure,
+            render::pressure(p.pressure)
         );
         let _ = writeln!(
             s,
             "tangent  = {:e} Pa/m (dp/dd at fixed history)",
-            self.tangent
+            p.tangent
         );
         let _ = writeln!(
             s,
             "d_min    = {:e} m, path {} after the call",
-            self.d_min, self.path
+            p.d_min, p.path
         );
+        let _ = writeln!(s, "region   = {}", region_words(p.region));
         s
     }
 
     fn csv(&self) -> String {
-        format!(
-            "d_m,d_min_m,path,pressure_pa,tangent_pa_per_m\n{:e},{:e},{},{:e},{:e}\n",
-            self.d, self.d_min, self.path, self.pressure, self.tangent
-        )
+        format!("{CSV_HEADER}{}", csv_row(&self.point))
+    }
+}
+
+impl Render for EvalBatch {
+    fn table(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "law {}: {} points, {} outside the measured region",
+            self.law,
+            self.points.len(),
+            self.outside_measured
+        );
+        let _ = writeln!(
+            s,
+            "{:>13} {:>13} {:>8} {:>14} {:>14} {:>13} {:>8}  region",
+            "d [m]", "d_min [m]", "path", "p [Pa]", "dp/dd [Pa/m]", "d_min after", "path"
+        );
+        for p in &self.points {
+            let _ = writeln!(
+                s,
+                "{:>13.6e} {:>13} {:>8} {:>14.6e} {:>14.6e} {:>13.6e} {:>8}  {}",
+                p.d,
+                p.d_min_given
+                    .map_or("virgin".to_string(), |v| format!("{v:.6e}")),
+                p.path_given,
+                p.pressure,
+                p.tangent,
+                p.d_min,
+                p.path,
+                p.region
+            );
+        }
+        s
+    }
+
+    fn csv(&self) -> String {
+        let mut s = String::from(CSV_HEADER);
+        for p in &self.points {
+            s += &csv_row(p);
+        }
+        s
     }
 }

@@ -12,6 +12,7 @@
 //! snapshots that are out of tolerance (review the diff in git).
 
 mod accuracy;
+mod law;
 mod tradeoff;
 
 fn report(r: Result<(), String>) -> ExitCode {
@@ -184,8 +185,9 @@ fn main() -> ExitCode {
         ["tradeoff"] => return report(tradeoff::main()),
         ["docs"] => return report(field_table()),
         ["accuracy", rest @ ..] => return report(accuracy::main(rest)),
+        ["law", rest @ ..] => return report(law::main(rest)),
         _ => {
-            eprintln!("usage: cargo xtask verify [--update] | cargo xtask tradeoff | cargo xtask accuracy [--scenes N] [--seed S] | cargo xtask docs");
+            eprintln!("usage: cargo xtask verify [--update] | cargo xtask tradeoff | cargo xtask accuracy [--scenes N] [--seed S] | cargo xtask law [--scenes N] [--seed S] [--domain mems|wide] [--held-out K] | cargo xtask docs");
             return ExitCode::from(2);
         }
     };

@@ -6,10 +6,13 @@
  * positive, adhesive negative), tangent dp/dd in Pa/m. d is measured from the mean plane
  * of asperity heights to the counter-flat: smaller d is deeper contact.
  *
- * Every function returns an SCL_* status (0 = success) and writes its outputs only on
- * success; a null required pointer gives SCL_ERR_NULL. scl_last_error() explains the last
- * failure on the calling thread. A loaded law is immutable and may be evaluated from
- * several threads at once, each with its own scl_state.
+ * Every function returns an SCL_* status. SCL_OK (0) is success inside the measured region
+ * of the table; the evaluations return SCL_BEYOND_REACH or SCL_ABOVE_TABLE, with their
+ * outputs written, for a point outside it (SCL_HAS_VALUE(status) is true for all three);
+ * the SCL_ERR_* codes write nothing. A null required pointer gives SCL_ERR_NULL.
+ * scl_last_error() explains the last failure on the calling thread. A loaded law is
+ * immutable and may be evaluated from several threads at once, each with its own
+ * scl_state.
  *
  * Hand-written; the tests of contact-law-capi check it against the library's exports,
  * constants and struct layout. Documentation: docs/contact-law.md.
@@ -24,7 +27,7 @@
 extern "C" {
 #endif
 
-#define SCL_ABI_VERSION 1
+#define SCL_ABI_VERSION 2
 
 /* Status codes. */
 enum scl_status {
@@ -34,8 +37,17 @@ enum scl_status {
     SCL_ERR_FORMAT = 3,       /* not a valid law.json (syntax, format, version, a value) */
     SCL_ERR_OUT_OF_RANGE = 4, /* separation or history outside the tabulated range */
     SCL_ERR_INVALID = 5,      /* non-finite d, unknown path, inconsistent state */
-    SCL_ERR_INTERNAL = 6      /* internal error (caught panic): please report */
+    SCL_ERR_INTERNAL = 6,     /* internal error (caught panic): please report */
+    /* Not errors: outputs written, but the point lies outside the measured region. */
+    SCL_BEYOND_REACH = 7, /* beyond the curve's reach: pressure and tangent exactly 0 (no
+                             asperity in contact: the model's own value, not interpolated) */
+    SCL_ABOVE_TABLE = 8   /* history shallower than the table: the law's blend of the
+                             shallowest branch towards zero at the virgin reach, not measured
+                             (pressures of the order of the file's pressure_floor or less) */
 };
+
+/* True for the statuses whose outputs are written: SCL_OK, SCL_BEYOND_REACH, SCL_ABOVE_TABLE. */
+#define SCL_HAS_VALUE(status) ((status) == SCL_OK || (status) == SCL_BEYOND_REACH || (status) == SCL_ABOVE_TABLE)
 
 /* scl_state.path */
 enum scl_path {
@@ -78,6 +90,15 @@ void scl_state_init(scl_state *state);
  *  - d < d_min: the approach deepens the history (d_min = d), virgin envelope;
  *  - otherwise a reversal switches the path (approach and d > last d: retract;
  *    retract and d < last d: approach), then that branch of the current d_min.
+ * Returns SCL_OK in the measured region, SCL_BEYOND_REACH or SCL_ABOVE_TABLE outside it
+ * (outputs and state written), SCL_ERR_OUT_OF_RANGE for a history deeper than the table.
+ *
+ * Positive retract tangents: a law whose file has the key "positive_retract_tangent" has
+ * retract branches on which the pressure rises as the gap opens before the pull-out (the
+ * eq-12 reload overshoot of soft films; "bounded" reload removes it): there the tangent
+ * returned is > 0 on the retract path, which an implicit FE code receives as a negative
+ * unloading stiffness. Use min(tangent, 0) as the Newton stiffness on the retract path
+ * (the pressure itself is right), or tabulate with contact.reload = "bounded".
  */
 int scl_law_eval(const scl_law *law, double d, scl_state *state, double *pressure,
                  double *tangent);
@@ -94,7 +115,11 @@ int scl_law_eval_stateless(const scl_law *law, double d, double d_min, int32_t p
 int scl_law_d_min_range(const scl_law *law, double *lo, double *hi);
 
 /* *exact = 1 if the one-number history is exact for *state, 0 after a partial reload or a
- * partial retraction (the law then follows the branch of d_min). */
+ * partial retraction (the law then follows the branch of d_min). The status is the
+ * region of the state's history d_min: SCL_OK inside the table (or a virgin state),
+ * SCL_ABOVE_TABLE shallower than it (*exact written; the law there is not measured),
+ * SCL_BEYOND_REACH at or beyond the virgin reach (never in contact), and
+ * SCL_ERR_OUT_OF_RANGE deeper than the table (nothing written). */
 int scl_law_history_exact(const scl_law *law, const scl_state *state, int *exact);
 
 /* Message of the last failed call on this thread ("" if none); valid until the next

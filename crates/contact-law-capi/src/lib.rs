@@ -4,8 +4,9 @@
 //! this crate's static library and checks its results against the Rust evaluator bit for
 //! bit.
 //!
-//! Every function returns a status code ([`SCL_OK`] or an `SCL_ERR_*` value) and never
-//! unwinds across the boundary (each body runs under `catch_unwind`); null pointers are
+//! Every function returns a status code ([`SCL_OK`] or an `SCL_ERR_*` value; the
+//! evaluations also [`SCL_BEYOND_REACH`] or [`SCL_ABOVE_TABLE`], with their outputs
+//! written, for a point outside the measured region) and never unwinds across the boundary (each body runs under `catch_unwind`); null pointers are
 //! reported as [`SCL_ERR_NULL`]. The message of the last failed call on the calling thread
 //! is [`scl_last_error`]. A loaded law is immutable: several threads may evaluate it at
 //! once, each with its own `scl_state`.
@@ -32,7 +33,7 @@
 //! # std::fs::remove_dir_all(&dir).ok();
 //! ```
 
-use contact_law::{ContactLaw, LawError, Path, State};
+use contact_law::{ContactLaw, LawError, Path, Region, State};
 use std::cell::RefCell;
 use std::ffi::{c_char, c_int, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -51,6 +52,27 @@ pub const SCL_ERR_OUT_OF_RANGE: c_int = 4;
 pub const SCL_ERR_INVALID: c_int = 5;
 /// An internal error (a caught panic); please report it.
 pub const SCL_ERR_INTERNAL: c_int = 6;
+/// Not an error: the outputs are written, but the point lies beyond the reach of its curve
+/// (every asperity out of contact): the pressure and the tangent are exactly 0, the model's
+/// own value there, not a measured interpolation ([`contact_law::Region::BeyondReach`]).
+pub const SCL_BEYOND_REACH: c_int = 7;
+/// Not an error: the outputs are written, but the history is shallower than the shallowest
+/// tabulated branch: the value is the law's blend towards zero at the virgin reach, not
+/// measured against the surface ([`contact_law::Region::AboveTable`]).
+pub const SCL_ABOVE_TABLE: c_int = 8;
+
+/// The status of a successful evaluation in `region`: [`SCL_OK`] inside the measured
+/// region, [`SCL_BEYOND_REACH`] or [`SCL_ABOVE_TABLE`] outside it (outputs written). A
+/// deeper history than the table is an error ([`SCL_ERR_OUT_OF_RANGE`], nothing written),
+/// never a value.
+pub fn region_status(region: Region) -> c_int {
+    match region {
+        Region::Measured => SCL_OK,
+        Region::BeyondReach => SCL_BEYOND_REACH,
+        Region::AboveTable => SCL_ABOVE_TABLE,
+        Region::BelowTable => SCL_ERR_OUT_OF_RANGE,
+    }
+}
 
 /// `scl_state.path`: approach (coming from far or reloading).
 pub const SCL_PATH_APPROACH: i32 = 0;
@@ -64,7 +86,7 @@ pub const SCL_STATE_TOUCHED: i32 = 1;
 pub const SCL_STATE_TURNED: i32 = 2;
 
 /// Version of this ABI (functions, struct layout, codes).
-pub const SCL_ABI_VERSION: c_int = 1;
+pub const SCL_ABI_VERSION: c_int = 2;
 
 /// The opaque law handle `scl_law`.
 pub struct SclLaw(ContactLaw);
@@ -248,7 +270,9 @@ pub unsafe extern "C" fn scl_state_init(state: *mut SclState) {
 
 /// Pressure `*pressure` (Pa, compressive positive) and tangent `*tangent` = dp/dd (Pa/m)
 /// at separation `d` (m), updating the history `*state` as
-/// [`contact_law::ContactLaw::pressure`] does. On error nothing is written.
+/// [`contact_law::ContactLaw::pressure`] does. Returns [`SCL_OK`] inside the measured
+/// region, [`SCL_BEYOND_REACH`] or [`SCL_ABOVE_TABLE`] outside it (the outputs and the
+/// state are written: see [`region_status`]); on error nothing is written.
 ///
 /// # Safety
 /// `law` must be null or a live handle; the other pointers null or valid.
@@ -275,15 +299,15 @@ pub unsafe extern "C" fn scl_law_eval(
                 "scl_law_eval: inconsistent scl_state (unknown path or non-finite field of a touched state)",
             );
         };
-        match law.pressure(d, &mut s) {
-            Ok((p, t)) => {
+        match law.step(d, &mut s) {
+            Ok(e) => {
                 // SAFETY: as above
                 unsafe {
-                    *pressure = p;
-                    *tangent = t;
+                    *pressure = e.pressure;
+                    *tangent = e.tangent;
                     *state = SclState::from_state(&s);
                 }
-                SCL_OK
+                region_status(e.region)
             }
             Err(e) => law_error(&e),
         }
@@ -293,7 +317,8 @@ pub unsafe extern "C" fn scl_law_eval(
 /// Stateless evaluation ([`contact_law::ContactLaw::evaluate`]) at `d` (m) with history
 /// `d_min` (m; `INFINITY` for a virgin surface) on `path`. Writes the pressure (Pa), the
 /// tangent (Pa/m) and, if `d_min_out` is not null, the history after the call (d when
-/// d < d_min). On error nothing is written.
+/// d < d_min). The status says the region as for [`scl_law_eval`]; on error nothing is
+/// written.
 ///
 /// # Safety
 /// `law` must be null or a live handle; the other pointers null or valid.
@@ -332,7 +357,7 @@ pub unsafe extern "C" fn scl_law_eval_stateless(
                         *d_min_out = e.d_min;
                     }
                 }
-                SCL_OK
+                region_status(e.region)
             }
             Err(e) => law_error(&e),
         }
@@ -365,7 +390,13 @@ pub unsafe extern "C" fn scl_law_d_min_range(
 
 /// Writes 1 to `*exact` if the one-number history is exact for `*state`, 0 after a
 /// partial reload or a partial retraction (see
-/// [`contact_law::ContactLaw::is_history_exact`]).
+/// [`contact_law::ContactLaw::is_history_exact`]). The status tells whether the state's
+/// history lies in the measured range of the table
+/// ([`contact_law::ContactLaw::history_region`]): [`SCL_OK`] inside it (and for a virgin
+/// state), [`SCL_ABOVE_TABLE`] for a history shallower than the table (`*exact` written:
+/// the history may be exact, but the law there is not measured), [`SCL_BEYOND_REACH`] for
+/// one at or beyond the virgin reach (never in contact: the law is exactly zero),
+/// [`SCL_ERR_OUT_OF_RANGE`] for one deeper than the table (nothing written).
 ///
 /// # Safety
 /// `law` must be null or a live handle; the other pointers null or valid.
@@ -387,9 +418,23 @@ pub unsafe extern "C" fn scl_law_history_exact(
                 "scl_law_history_exact: inconsistent scl_state",
             );
         };
+        let region = if s.is_virgin() {
+            Region::Measured
+        } else {
+            law.history_region(s.d_min)
+        };
+        if region == Region::BelowTable {
+            return fail(
+                SCL_ERR_OUT_OF_RANGE,
+                &format!(
+                    "scl_law_history_exact: the state's d_min = {:e} m is deeper than the table (region below_table)",
+                    s.d_min
+                ),
+            );
+        }
         // SAFETY: valid by the contract
         unsafe { *exact = c_int::from(law.is_history_exact(&s)) };
-        SCL_OK
+        region_status(region)
     })
 }
 

@@ -9,7 +9,7 @@
 
 use contact_law::tabulate::{tabulate, Tabulation};
 use contact_law::toy::ToyLaw;
-use contact_law::{ContactLaw, Path, State};
+use contact_law::{ContactLaw, Path, Region, State};
 use contact_law_capi::*;
 use std::io::Write;
 use std::path::{Path as FsPath, PathBuf};
@@ -263,6 +263,8 @@ fn a_c_program_agrees_with_the_rust_evaluator_bit_for_bit() {
             SCL_ERR_OUT_OF_RANGE,
             SCL_ERR_INVALID,
             SCL_ERR_INTERNAL,
+            SCL_BEYOND_REACH,
+            SCL_ABOVE_TABLE,
             SCL_PATH_APPROACH,
             SCL_PATH_RETRACT,
             SCL_STATE_TOUCHED,
@@ -271,6 +273,9 @@ fn a_c_program_agrees_with_the_rust_evaluator_bit_for_bit() {
             SCL_ABI_VERSION,
         ]
     );
+    // the statuses with a value: the success and the two regions outside the measured one
+    assert_eq!(next("has_value"), ["1", "1", "1", "0", "0"]);
+    assert_eq!(SCL_ABI_VERSION, 2);
 
     // error paths: codes, untouched outputs, messages
     let code = |v: i32| v.to_string();
@@ -300,15 +305,18 @@ fn a_c_program_agrees_with_the_rust_evaluator_bit_for_bit() {
     // the commands, against the Rust evaluator
     let mut state = State::VIRGIN;
     let (mut ok, mut failed) = (0, 0);
+    let mut regions: Vec<Region> = Vec::new();
     for (i, c) in cmds.iter().enumerate() {
         match c {
             Cmd::Eval(d) => {
                 let f = next("e");
                 let before = state;
-                match law.pressure(*d, &mut state) {
-                    Ok((p, t)) => {
+                match law.step(*d, &mut state) {
+                    Ok(e) => {
+                        let (p, t) = (e.pressure, e.tangent);
                         ok += 1;
-                        assert_eq!(f[0], code(SCL_OK), "command {i}: e {d:e}");
+                        regions.push(e.region);
+                        assert_eq!(f[0], code(region_status(e.region)), "command {i}: e {d:e}");
                         assert!(
                             same(num(&f[1]), p) && same(num(&f[2]), t),
                             "command {i}: e {d:e}: C {f:?}, Rust {p:e} {t:e}"
@@ -345,7 +353,8 @@ fn a_c_program_agrees_with_the_rust_evaluator_bit_for_bit() {
                 match law.evaluate(*d, *m, path) {
                     Ok(e) => {
                         ok += 1;
-                        assert_eq!(f[0], code(SCL_OK), "command {i}");
+                        regions.push(e.region);
+                        assert_eq!(f[0], code(region_status(e.region)), "command {i}");
                         assert!(
                             same(num(&f[1]), e.pressure)
                                 && same(num(&f[2]), e.tangent)
@@ -361,10 +370,16 @@ fn a_c_program_agrees_with_the_rust_evaluator_bit_for_bit() {
             }
             Cmd::Exact => {
                 let f = next("x");
+                let region = if state.is_virgin() {
+                    Region::Measured
+                } else {
+                    law.history_region(state.d_min)
+                };
+                assert_ne!(region, Region::BelowTable, "command {i}");
                 assert_eq!(
                     f,
                     [
-                        code(SCL_OK),
+                        code(region_status(region)),
                         (law.is_history_exact(&state) as i32).to_string()
                     ],
                     "command {i}"
@@ -379,6 +394,10 @@ fn a_c_program_agrees_with_the_rust_evaluator_bit_for_bit() {
     assert!(it.next().is_none(), "extra output from the driver");
     // the script exercised both outcomes, and mostly successes
     assert!(ok > 700 && failed >= 6, "ok {ok}, failed {failed}");
+    // and every region with a value, each with its own status
+    for r in [Region::Measured, Region::BeyondReach, Region::AboveTable] {
+        assert!(regions.contains(&r), "no evaluation in {r:?}");
+    }
 }
 
 #[test]
@@ -387,7 +406,7 @@ fn the_c_program_reports_a_corrupted_law_file_by_its_json_path() {
     let exe = compile_driver();
     let text = std::fs::read_to_string(file).unwrap();
     let bad = tmp().join("bad-version.json");
-    std::fs::write(&bad, text.replacen("\"version\": 1", "\"version\": 2", 1)).unwrap();
+    std::fs::write(&bad, text.replacen("\"version\": 2", "\"version\": 3", 1)).unwrap();
     let mut child = Command::new(&exe)
         .arg(&bad)
         .stdout(Stdio::piped())
@@ -404,7 +423,7 @@ fn the_c_program_reports_a_corrupted_law_file_by_its_json_path() {
     );
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
-        stderr.contains("version") && stderr.contains('2'),
+        stderr.contains("version") && stderr.contains('3'),
         "{stderr}"
     );
 }
@@ -415,7 +434,7 @@ fn the_c_program_refuses_a_law_file_with_a_duplicated_key() {
     let exe = compile_driver();
     let text = std::fs::read_to_string(file).unwrap();
     let bad = tmp().join("duplicated-version.json");
-    let dup = text.replacen("\"version\": 1,", "\"version\": 1,\n  \"version\": 2,", 1);
+    let dup = text.replacen("\"version\": 2,", "\"version\": 2,\n  \"version\": 3,", 1);
     assert_ne!(dup, text);
     std::fs::write(&bad, dup).unwrap();
     let out = Command::new(&exe)
@@ -512,4 +531,218 @@ fn the_header_compiles_as_cpp() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+/// Every evaluation outside the measured region has a status of its own, with its value
+/// written (above the table, beyond the reach), or an error without one (below the table);
+/// the history query flags a shallower history than the table.
+#[test]
+fn the_c_abi_flags_every_point_outside_the_measured_region() {
+    let (file, law) = law_file();
+    let path = std::ffi::CString::new(file.to_str().unwrap()).unwrap();
+    let mut h = std::ptr::null_mut();
+    assert_eq!(unsafe { scl_law_load(path.as_ptr(), &mut h) }, SCL_OK);
+    let (lo, hi) = law.d_min_range();
+    let top = law.virgin().reach();
+    let stateless = |d: f64, d_min: f64, p: i32| {
+        let (mut pr, mut t, mut dm) = (f64::NAN, f64::NAN, f64::NAN);
+        let rc = unsafe { scl_law_eval_stateless(h, d, d_min, p, &mut pr, &mut t, &mut dm) };
+        (rc, pr, t, dm)
+    };
+    // inside: OK
+    let mid = 0.5 * (lo + hi);
+    let (rc, p, ..) = stateless(mid + 1e-10, mid, SCL_PATH_RETRACT);
+    assert_eq!(rc, SCL_OK);
+    assert!(p.is_finite());
+    // a history shallower than the table, within reach: a value, flagged
+    let above = hi + 0.3 * (top - hi);
+    let (rc, p, t, dm) = stateless(above + 1e-11, above, SCL_PATH_RETRACT);
+    assert_eq!(rc, SCL_ABOVE_TABLE, "{}", last_error());
+    assert!(p.is_finite() && t.is_finite() && dm == above);
+    // beyond the reach of the branch: exactly zero, flagged
+    let reach = law.reach(mid, Path::Retract).unwrap();
+    let (rc, p, t, _) = stateless(reach + 1e-9, mid, SCL_PATH_RETRACT);
+    assert_eq!((rc, p, t), (SCL_BEYOND_REACH, 0.0, 0.0));
+    // deeper than the table: an error, nothing written
+    let (rc, p, ..) = stateless(lo, 0.5 * lo, SCL_PATH_APPROACH);
+    assert_eq!(rc, SCL_ERR_OUT_OF_RANGE);
+    assert!(p.is_nan());
+    assert!(last_error().contains("below_table"), "{}", last_error());
+
+    // stateful: a touch that stops above the table, then its retraction
+    let mut st = SclState::default();
+    let (mut p, mut t) = (0.0, 0.0);
+    let mut codes = Vec::new();
+    let mut exact = -1;
+    for d in [1.2 * top, above, above + 0.01 * (top - above)] {
+        codes.push(unsafe { scl_law_eval(h, d, &mut st, &mut p, &mut t) });
+    }
+    assert_eq!(codes, [SCL_BEYOND_REACH, SCL_OK, SCL_ABOVE_TABLE]);
+    // the history is one number and exact, but not in the table: flagged, not OK
+    assert_eq!(
+        unsafe { scl_law_history_exact(h, &st, &mut exact) },
+        SCL_ABOVE_TABLE
+    );
+    assert_eq!(exact, 1);
+    // a state deeper than the table (written by hand): an error
+    let deep = SclState {
+        d_min: 0.5 * lo,
+        last_d: 0.5 * lo,
+        flags: SCL_STATE_TOUCHED,
+        ..SclState::default()
+    };
+    exact = -1;
+    assert_eq!(
+        unsafe { scl_law_history_exact(h, &deep, &mut exact) },
+        SCL_ERR_OUT_OF_RANGE
+    );
+    assert_eq!(exact, -1);
+    // a virgin state: OK
+    assert_eq!(
+        unsafe { scl_law_history_exact(h, &SclState::default(), &mut exact) },
+        SCL_OK
+    );
+    unsafe { scl_law_free(h) };
+}
+
+fn last_error() -> String {
+    unsafe { std::ffi::CStr::from_ptr(scl_last_error()) }
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// The Fortran FE client (`tests/fortran/uinter.f90`, a UINTER-like routine through
+/// `bind(C)`: gap in, pressure and tangent out, the state in the caller's real array),
+/// compiled with gfortran when it is installed (required when STICTION_REQUIRE_FORTRAN is
+/// set, as `.ci/fortran` does), and compared with the Rust evaluator bit for bit over Newton
+/// iterations (not committed) and converged increments (committed).
+#[test]
+fn a_fortran_uinter_agrees_with_the_rust_evaluator_bit_for_bit() {
+    let fc = std::env::var("FC").unwrap_or_else(|_| "gfortran".into());
+    let required = std::env::var_os("STICTION_REQUIRE_FORTRAN").is_some();
+    if Command::new(&fc).arg("--version").output().is_err() {
+        assert!(
+            !required,
+            "STICTION_REQUIRE_FORTRAN is set but the Fortran compiler `{fc}` cannot be run"
+        );
+        eprintln!("no Fortran compiler `{fc}`: skipped (set FC, or install gfortran)");
+        return;
+    }
+    let (file, law) = law_file();
+    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let dir = tmp().join("fortran");
+    std::fs::create_dir_all(&dir).unwrap();
+    let exe = dir.join("uinter");
+    let out = Command::new(&fc)
+        .args(["-std=f2008", "-Wall", "-Werror", "-J"])
+        .arg(&dir)
+        .arg(manifest.join("tests/fortran/uinter.f90"))
+        .arg(static_lib())
+        .args(["-lpthread", "-ldl", "-lm", "-o"])
+        .arg(&exe)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "compiling uinter.f90 failed:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // increments of a loading history with two Newton iterations each (the first ones
+    // overshoot and are not committed), in and out of contact, beyond the table's
+    // shallowest history and back, with resets
+    let mut rng = Lcg(11);
+    let mut script = String::new();
+    let mut g = 2e-8;
+    for i in 0..500 {
+        let step = (rng.uniform() - 0.55) * 1.2e-9;
+        g = (g + step).clamp(1.6e-9, 2.4e-8);
+        script += &format!("i {:e}\n", g + 0.3e-9 * (rng.uniform() - 0.5));
+        script += &format!("g {g:e}\n");
+        if i % 83 == 82 {
+            script += "r\n";
+        }
+    }
+    let lines = run_driver(&exe, file, &script);
+    assert_eq!(lines[0], format!("abi {SCL_ABI_VERSION}"));
+    let mut state = State::VIRGIN;
+    let mut seen = Vec::new();
+    let mut errors = 0;
+    let mut k = 1;
+    for cmd in script.lines() {
+        let line = &lines[k];
+        k += 1;
+        if cmd == "r" {
+            assert_eq!(line, "r");
+            state = State::VIRGIN;
+            continue;
+        }
+        let f: Vec<&str> = line.split_whitespace().collect();
+        assert_eq!(f[0], &cmd[..1], "{line}");
+        let gap: f64 = cmd[2..].parse().unwrap();
+        let mut trial = state;
+        let v: Vec<f64> = f[2..].iter().map(|s| num(s)).collect();
+        // an error leaves the caller's state and gives no value
+        let (rc, p, t) = match law.step(gap, &mut trial) {
+            Ok(e) => {
+                seen.push(e.region);
+                (region_status(e.region), e.pressure, e.tangent)
+            }
+            Err(e) => {
+                errors += 1;
+                (status_code(&e), 0.0, 0.0)
+            }
+        };
+        assert_eq!(f[1], rc.to_string(), "{cmd}: {line}");
+        let cs = SclState::from_state(&trial);
+        let want = [
+            p,
+            t,
+            cs.d_min,
+            cs.last_d,
+            cs.d_turn,
+            f64::from(cs.path),
+            f64::from(cs.flags),
+        ];
+        for (a, b) in v.iter().zip(want) {
+            assert!(same(*a, b), "{cmd}: Fortran {line}, Rust {want:?}");
+        }
+        if cmd.starts_with('g') {
+            state = trial;
+        }
+    }
+    assert_eq!(k, lines.len(), "extra output from the Fortran client");
+    for r in [Region::Measured, Region::BeyondReach] {
+        assert!(seen.contains(&r), "no evaluation in {r:?}");
+    }
+    // some iterations went deeper than the table: refused, the state kept
+    assert!(errors > 0 && errors < 50, "{errors} errors");
+}
+
+/// The header states what the law does outside the measured region and what an FE user
+/// should do with a positive retract tangent (issue 24, item 3).
+#[test]
+fn the_header_states_the_regions_and_the_positive_retract_tangent() {
+    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let header = std::fs::read_to_string(manifest.join("include/stiction_contact_law.h")).unwrap();
+    // the comments as running text: line breaks and their leading " * " are spaces
+    let header = header
+        .lines()
+        .map(|l| l.trim().trim_start_matches("* ").trim_start_matches('*'))
+        .collect::<Vec<_>>()
+        .join(" ");
+    for needle in [
+        "SCL_BEYOND_REACH = 7",
+        "SCL_ABOVE_TABLE = 8",
+        "SCL_HAS_VALUE",
+        "positive_retract_tangent",
+        "negative unloading stiffness",
+        "min(tangent, 0)",
+        "reload = \"bounded\"",
+        "#define SCL_ABI_VERSION 2",
+    ] {
+        assert!(
+            header.contains(needle),
+            "the header does not say {needle:?}"
+        );
+    }
 }

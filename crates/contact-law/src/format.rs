@@ -4,7 +4,7 @@
 //! JSON path, so that each error names the key and the value (`branches[3].retract.d[17]`).
 
 use crate::error::{fmt_num, LawError};
-use crate::law::{BranchSet, ContactLaw, Curve, Meta, Point};
+use crate::law::{BranchError, BranchSet, ContactLaw, Curve, Meta, Point, PositiveTangent};
 use crate::meta::{
     from_non_finite_word, non_finite_word, ErrorStats, MeasuredError, PartialReloadError,
     TabulationInfo,
@@ -15,8 +15,10 @@ use std::path::Path as FsPath;
 
 /// The value of the `format` key.
 pub const FORMAT_NAME: &str = "stiction-contact-law";
-/// The value of the `version` key this crate reads and writes.
-pub const FORMAT_VERSION: u64 = 1;
+/// The value of the `version` key this crate reads and writes. Version 2: the scaled cubic
+/// rule in d_min, the pressure floor, the regions, the per-branch measured errors and the
+/// positive retract tangents (version 1 had the linear rule; tabulate such a law again).
+pub const FORMAT_VERSION: u64 = 2;
 /// Largest file [`ContactLaw::from_path`] reads (bytes): files are untrusted input, and the
 /// JSON tree of a file takes several times its size in memory. A law of 400 histories with
 /// 500 nodes per curve is about 18 MiB (the toy law of the tests, 0.9 MiB).
@@ -25,7 +27,7 @@ pub const MAX_FILE_BYTES: u64 = 64 << 20;
 /// Rule name of the interpolation in d.
 pub const RULE_IN_D: &str = "steffen-1990";
 /// Rule name of the interpolation in d_min.
-pub const RULE_IN_D_MIN: &str = "linear-at-fixed-x";
+pub const RULE_IN_D_MIN: &str = "scaled-cubic-at-fixed-x";
 
 const SIGN_CONVENTION: &str = "pressure is force per unit nominal area, compressive positive, \
 adhesive (tensile) negative; the tangent is dp/dd at fixed history, so it is negative where \
@@ -37,22 +39,52 @@ const DESC_IN_D: &str = "Steffen (1990, A&A 239:443) monotone piecewise-cubic He
 interpolation of each curve in x = d - d_min (in d for the virgin envelope): C1, through \
 every node, no overshoot, monotone where the nodes are; the tangent is its derivative; \
 the pressure is 0 beyond the last node (the reach)";
-const DESC_IN_D_MIN: &str = "between neighbouring branches d_k <= d_min <= d_k+1 linear \
-in d_min at fixed x = d - d_min, plus the continuity correction c (1 - x/L)^2 for x < L, \
-c = p_V(d_min) minus the blended value at x = 0, L the blended fade length of the two \
-branches (the first node where a branch has made half of its largest change from its start \
-value), so that every branch starts on the virgin envelope; above the last branch the same \
-blend towards the zero law at the virgin reach; below the first branch an error";
-const METRIC: &str = "|p_interp - p_direct| / (|p_direct| + |p_pull_out(d_min)|), \
-p_pull_out the most tensile retract pressure of the history d_min (for the virgin \
-envelope at d: d_min = d, |p_pull_out| linear between the tabulated branches and constant \
-beyond them)";
-const METHOD: &str = "direct evaluation of the source against the law read back from \
-its data at: the midpoint of every interval of every curve; the mid d_min of every pair \
-of neighbouring branches, at the midpoints of the union of their nodes (at most 64 per \
-branch); pseudo-random (d_min, d) pairs from a 64-bit LCG with the stated seed, d_min \
-uniform on the tabulated range and x = d - d_min = reach * u^2 (u uniform), and \
-pseudo-random d on the virgin envelope";
+const DESC_IN_D_MIN: &str = "at fixed x = d - d_min, cubic Lagrange interpolation in \
+d_min of the branches normalised by their pressure scales S_j = |p_V(d_j)| + |p_pull_out(d_j)| \
++ pressure_floor, times the scale S(d_min) = exp(sum c_j ln S_j): p = S(d_min) sum_j c_j(d_min) \
+P_j(x) / S_j, over the four tabulated histories nearest to d_min that bracket it (the stencil \
+shifted inwards at the ends of the grid; three or two when the grid has fewer), so that the \
+exponential change of the pressures with d_min is carried by S and the cubic sees shapes \
+that change slowly; plus the continuity correction c (1 - x/L)^2 for x < L, c = p_V(d_min) \
+minus that value at x = 0, L the fade length of the two bracketing branches (the first node \
+where a branch has made half of its largest change from its start value) linear in d_min, \
+so that every branch starts on the virgin envelope. At a tabulated d_min the branch itself. \
+Above the last branch (region above_table) the last branch times (1 - w), w the fraction of \
+the way from it to the virgin reach, with the same correction; below the first branch \
+(region below_table) an error";
+const METRIC: &str = "|p_interp - p_direct| / (|p_direct| + |p_pull_out(d_min)| + \
+pressure_floor), p_pull_out the most tensile retract pressure of the history d_min (for the \
+virgin envelope at d: d_min = d, |p_pull_out| linear between the tabulated branches and \
+constant beyond them), pressure_floor the floor of interpolation.pressure_floor";
+const METHOD: &str = "direct evaluation of the source against the law assembled from its \
+data at: the midpoint of every interval of every curve; the mid d_min of every pair of \
+neighbouring branches, at the union of their nodes and its midpoints (at most 96 per \
+branch) and its pull-out (the tabulator's own checks, with the final law); and held-out \
+pseudo-random points from a 64-bit LCG with the stated seed (after the last refinement): \
+d_min uniform on the tabulated range with x = d - d_min = reach * u^2 (u uniform), and d \
+uniform on the virgin envelope";
+const PRESSURE_FLOOR: &str = "pressure_floor (Pa) is added to the denominator of the error \
+metric and to every branch's pressure scale: a fraction of the pressure scale of the \
+deepest history (its largest |p|), so that pressures far below what the law carries are \
+judged against it rather than against themselves";
+const REGION_MEASURED: &str = "d_min between the first and the last tabulated history (or \
+a deepening d on the virgin envelope between its first node and its reach) and d within \
+the curve's reach: interpolated, with the error of interpolation.measured_error";
+const REGION_BEYOND_REACH: &str = "d beyond the reach of the curve evaluated (every \
+asperity out of contact): pressure and tangent exactly 0, the model's own value (heights \
+truncated at 9 sigma_s), not an interpolation";
+const REGION_ABOVE_TABLE: &str = "d_min above the last tabulated history (a touch lighter \
+than the table's first touch) and d within reach: the last branch blended towards zero at \
+the virgin reach; not measured; its pressures are of the order of pressure_floor or less";
+const REGION_BELOW_TABLE: &str = "d_min, or a deepening d, below the first tabulated \
+history: no data; evaluation is an error (C: SCL_ERR_OUT_OF_RANGE); tabulate deeper";
+const POSITIVE_ADVICE: &str = "these retract branches rise before their pull-out: the \
+pressure grows as the surfaces separate, a positive tangent dp/dd, which an implicit FE code \
+receives as a negative unloading stiffness. On an elasto-plastic surface the cause is the \
+eq-12 reload overshoot of asperities pressed beyond about 16 delta_CP (docs/theory.md \
+section 2.5); tabulate the scene with contact.reload = \"bounded\" to remove it. With this \
+table, use min(dp/dd, 0) as the Newton stiffness on retract branches (the pressure stays the \
+law's) and expect slower convergence there";
 const RELOAD_METHOD: &str = "retract branch of d_min from the law against the source's \
 retraction after a reload that turned at d_turn > d_min, at the separations given to \
 measure_partial_reload";
@@ -491,9 +523,14 @@ fn from_value(root: &Value) -> Result<ContactLaw, LawError> {
     top.expect_str("format", FORMAT_NAME)?;
     let version = top.uint("version")?;
     if version != FORMAT_VERSION {
+        let why = if version < FORMAT_VERSION {
+            " (an older law, interpolated linearly in d_min: tabulate it again)"
+        } else {
+            ""
+        };
         return Err(LawError::format(
             "version",
-            format!("{version}: this reader knows version {FORMAT_VERSION}"),
+            format!("{version}: this reader knows version {FORMAT_VERSION}{why}"),
         ));
     }
     top.keys(&[
@@ -503,6 +540,8 @@ fn from_value(root: &Value) -> Result<ContactLaw, LawError> {
         "sign_convention",
         "reference_plane",
         "interpolation",
+        "regions",
+        "positive_retract_tangent",
         "length_scale",
         "tabulation",
         "d_min_grid",
@@ -521,11 +560,31 @@ fn from_value(root: &Value) -> Result<ContactLaw, LawError> {
     top.string("reference_plane")?;
 
     let interp = top.sub("interpolation")?;
-    interp.keys(&["in_d", "in_d_min", "measured_error"])?;
+    interp.keys(&["in_d", "in_d_min", "pressure_floor", "measured_error"])?;
     for (key, rule) in [("in_d", RULE_IN_D), ("in_d_min", RULE_IN_D_MIN)] {
         let o = interp.sub(key)?;
         o.keys(&["rule", "description"])?;
         o.expect_str("rule", rule)?;
+    }
+    let floor = {
+        let o = interp.sub("pressure_floor")?;
+        o.keys(&["value", "description"])?;
+        let v = o.num("value")?;
+        if v < 0.0 {
+            return Err(LawError::format(
+                "interpolation.pressure_floor.value",
+                format!("{} Pa: must be >= 0", fmt_num(v)),
+            ));
+        }
+        v
+    };
+    if let Some(v) = top.opt("regions") {
+        let o = as_obj(v, "regions".into())?;
+        let names = ["measured", "beyond_reach", "above_table", "below_table"];
+        o.keys(&names)?;
+        for k in names {
+            o.string(k)?;
+        }
     }
     let measured = match interp.opt("measured_error") {
         None => None,
@@ -637,7 +696,7 @@ fn from_value(root: &Value) -> Result<ContactLaw, LawError> {
     let mut branches = Vec::with_capacity(items.len());
     for (k, item) in items.iter().enumerate() {
         let b = as_obj(item, format!("branches[{k}]"))?;
-        b.keys(&["d_min", "approach", "retract", "pull_out"])?;
+        b.keys(&["d_min", "pull_out", "measured_error", "approach", "retract"])?;
         let d_min = b.num("d_min")?;
         if d_min != grid[k] {
             return Err(LawError::format(
@@ -652,7 +711,7 @@ fn from_value(root: &Value) -> Result<ContactLaw, LawError> {
         let a = b.sub("approach")?;
         a.keys(&["reach", "most_tensile", "d", "pressure"])?;
         let r = b.sub("retract")?;
-        r.keys(&["reach", "d", "pressure"])?;
+        r.keys(&["reach", "positive_tangent", "d", "pressure"])?;
         let pull_out = b.point("pull_out")?;
         let approach = read_curve(&a, d_min, None)?;
         let retract = read_curve(
@@ -660,15 +719,53 @@ fn from_value(root: &Value) -> Result<ContactLaw, LawError> {
             d_min,
             Some((pull_out, format!("branches[{k}].pull_out"))),
         )?;
-        branches.push(BranchSet {
-            d_min,
-            approach,
-            retract,
-        });
+        let mut set = BranchSet::new(d_min, approach, retract);
+        let stored = match r.opt("positive_tangent") {
+            None => None,
+            Some(v) => {
+                let o = as_obj(v, join(&r.path, "positive_tangent"))?;
+                o.keys(&["d", "tangent", "rise", "relative_rise"])?;
+                Some(PositiveTangent {
+                    d: o.num("d")?,
+                    tangent: o.num("tangent")?,
+                    rise: o.num("rise")?,
+                    relative_rise: o.num("relative_rise")?,
+                })
+            }
+        };
+        if stored != set.positive_tangent {
+            let found = |t: Option<PositiveTangent>| match t {
+                None => "none".to_string(),
+                Some(t) => format!(
+                    "a tangent of {} Pa/m at d = {} m, rise {} Pa",
+                    fmt_num(t.tangent),
+                    fmt_num(t.d),
+                    fmt_num(t.rise)
+                ),
+            };
+            return Err(LawError::format(
+                join(&r.path, "positive_tangent"),
+                format!(
+                    "{} recorded, but the curve has {}: the record must match the curve",
+                    found(stored),
+                    found(set.positive_tangent)
+                ),
+            ));
+        }
+        if let Some(v) = b.opt("measured_error") {
+            let o = as_obj(v, format!("branches[{k}].measured_error"))?;
+            o.keys(&["approach", "retract"])?;
+            set.measured = Some(BranchError {
+                approach: error_value(&o, "approach")?,
+                retract: error_value(&o, "retract")?,
+            });
+        }
+        branches.push(set);
     }
-    ContactLaw::assemble(
+    let law = ContactLaw::assemble(
         virgin,
         branches,
+        floor,
         Meta {
             length_scale,
             measured,
@@ -676,7 +773,35 @@ fn from_value(root: &Value) -> Result<ContactLaw, LawError> {
             partial_reload,
             scene,
         },
-    )
+    )?;
+    let stored = match top.opt("positive_retract_tangent") {
+        None => None,
+        Some(v) => {
+            let o = as_obj(v, "positive_retract_tangent".into())?;
+            o.keys(&[
+                "branches",
+                "d_min_range",
+                "worst",
+                "largest_relative_rise",
+                "advice",
+            ])?;
+            o.string("advice")?;
+            Some(o.uint("branches")?)
+        }
+    };
+    let have = law.positive_retract.map(|p| p.branches as u64);
+    if stored != have {
+        return Err(LawError::format(
+            "positive_retract_tangent",
+            format!(
+                "{} branches recorded, but {} retract branches rise before their pull-out: the \
+                 summary must match the branches",
+                stored.map_or("no".into(), |n| n.to_string()),
+                have.unwrap_or(0)
+            ),
+        ));
+    }
+    Ok(law)
 }
 
 // ------------------------------------------------------------------------------------
@@ -794,10 +919,21 @@ fn stats_items(s: &ErrorStats, extra: Option<f64>) -> Vec<(&'static str, J)> {
     ]
 }
 
-fn curve_j(c: &Curve, with_most_tensile: bool) -> J {
+fn curve_j(c: &Curve, with_most_tensile: bool, positive: Option<PositiveTangent>) -> J {
     let mut items = vec![("reach", J::Num(c.reach()))];
     if with_most_tensile {
         items.push(("most_tensile", point_j(c.most_tensile())));
+    }
+    if let Some(t) = positive {
+        items.push((
+            "positive_tangent",
+            J::Obj(vec![
+                ("d", J::Num(t.d)),
+                ("tangent", J::Num(t.tangent)),
+                ("rise", J::Num(t.rise)),
+                ("relative_rise", J::Num(t.relative_rise)),
+            ]),
+        ));
     }
     items.push(("d", nums(c.d())));
     items.push(("pressure", nums(c.pressure())));
@@ -820,6 +956,13 @@ impl ContactLaw {
                 J::Obj(vec![
                     ("rule", J::Str(RULE_IN_D_MIN.into())),
                     ("description", J::Str(DESC_IN_D_MIN.into())),
+                ]),
+            ),
+            (
+                "pressure_floor",
+                J::Obj(vec![
+                    ("value", J::Num(self.floor)),
+                    ("description", J::Str(PRESSURE_FLOOR.into())),
                 ]),
             ),
         ];
@@ -851,7 +994,38 @@ impl ContactLaw {
             ("sign_convention", J::Str(SIGN_CONVENTION.into())),
             ("reference_plane", J::Str(REFERENCE_PLANE.into())),
             ("interpolation", J::Obj(interp)),
+            (
+                "regions",
+                J::Obj(vec![
+                    ("measured", J::Str(REGION_MEASURED.into())),
+                    ("beyond_reach", J::Str(REGION_BEYOND_REACH.into())),
+                    ("above_table", J::Str(REGION_ABOVE_TABLE.into())),
+                    ("below_table", J::Str(REGION_BELOW_TABLE.into())),
+                ]),
+            ),
         ];
+        if let Some(p) = &self.positive_retract {
+            let w = p.worst;
+            top.push((
+                "positive_retract_tangent",
+                J::Obj(vec![
+                    ("branches", J::Int(p.branches as u64)),
+                    ("d_min_range", nums(&p.d_min_range)),
+                    (
+                        "worst",
+                        J::Obj(vec![
+                            ("d_min", J::Num(p.worst_d_min)),
+                            ("d", J::Num(w.d)),
+                            ("tangent", J::Num(w.tangent)),
+                            ("rise", J::Num(w.rise)),
+                            ("relative_rise", J::Num(w.relative_rise)),
+                        ]),
+                    ),
+                    ("largest_relative_rise", J::Num(p.largest_relative_rise)),
+                    ("advice", J::Str(POSITIVE_ADVICE.into())),
+                ]),
+            ));
+        }
         if let Some(s) = self.meta.length_scale {
             top.push(("length_scale", J::Num(s)));
         }
@@ -877,19 +1051,29 @@ impl ContactLaw {
         }
         top.push(("scene", J::Raw(self.meta.scene.clone())));
         top.push(("d_min_grid", nums(&self.grid)));
-        top.push(("virgin", curve_j(&self.virgin, true)));
+        top.push(("virgin", curve_j(&self.virgin, true, None)));
         top.push((
             "branches",
             J::Arr(
                 self.branches
                     .iter()
                     .map(|b| {
-                        J::Obj(vec![
+                        let mut items = vec![
                             ("d_min", J::Num(b.d_min)),
                             ("pull_out", point_j(b.pull_out())),
-                            ("approach", curve_j(&b.approach, true)),
-                            ("retract", curve_j(&b.retract, false)),
-                        ])
+                        ];
+                        if let Some(m) = b.measured {
+                            items.push((
+                                "measured_error",
+                                J::Obj(vec![
+                                    ("approach", J::Num(m.approach)),
+                                    ("retract", J::Num(m.retract)),
+                                ]),
+                            ));
+                        }
+                        items.push(("approach", curve_j(&b.approach, true, None)));
+                        items.push(("retract", curve_j(&b.retract, false, b.positive_tangent)));
+                        J::Obj(items)
                     })
                     .collect(),
             ),

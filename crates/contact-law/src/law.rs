@@ -25,6 +25,48 @@ impl Path {
     }
 }
 
+/// Where an evaluation lies relative to what the tabulator measured.
+///
+/// * [`Region::Measured`]: inside the tabulated histories (`d_min` between the deepest and
+///   the shallowest branch, or the virgin envelope between its first node and its reach)
+///   and within the curve's reach: the interpolation error there is what the file's
+///   `measured_error` states.
+/// * [`Region::BeyondReach`]: beyond the reach of the curve evaluated (every asperity out
+///   of contact): the pressure and the tangent are exactly 0, which is the model's own value
+///   (its heights are truncated at 9 sigma_s), not an interpolation.
+/// * [`Region::AboveTable`]: a history shallower than the shallowest tabulated branch (a
+///   touch lighter than the table's first touch), within reach: the law blends the
+///   shallowest branch towards zero at the virgin reach; not measured. Its pressures are
+///   of the order of the file's `pressure_floor` or less.
+/// * [`Region::BelowTable`]: a history (or a deepening separation) deeper than the deepest
+///   tabulated branch: the law has no data there and evaluation is an error
+///   ([`LawError::OutOfRange`]); this variant names the region of such errors.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Region {
+    /// Inside the tabulated and measured region.
+    Measured,
+    /// Beyond the curve's reach: exactly 0.
+    BeyondReach,
+    /// Shallower than the shallowest tabulated history: a blend to zero, not measured.
+    AboveTable,
+    /// Deeper than the deepest tabulated history: an error, no value.
+    BelowTable,
+}
+
+impl Region {
+    /// `"measured"`, `"beyond_reach"`, `"above_table"` or `"below_table"` (the names of
+    /// `stiction law eval --format json`, a public contract).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Region::Measured => "measured",
+            Region::BeyondReach => "beyond_reach",
+            Region::AboveTable => "above_table",
+            Region::BelowTable => "below_table",
+        }
+    }
+}
+
 /// A point of the law: separation `d` (m) and pressure (Pa).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Point {
@@ -111,6 +153,8 @@ pub struct Evaluation {
     pub d_min: f64,
     /// The path after the call (approach when the history deepened).
     pub path: Path,
+    /// Where the point lies: measured, beyond the reach, above the table (see [`Region`]).
+    pub region: Region,
 }
 
 /// One tabulated curve: nodes from its start to its reach (the last node; the pressure is
@@ -260,15 +304,125 @@ impl Curve {
     }
 }
 
+/// A rise of a retract branch before its pull-out: as the surfaces separate the pressure
+/// grows, so the tangent dp/dd is positive and an implicit FE code sees a negative
+/// unloading stiffness there. The cause on elasto-plastic surfaces is the eq-12 reload
+/// overshoot (`docs/theory.md` section 2.5), which the reload reading
+/// `contact.reload = "bounded"` removes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PositiveTangent {
+    /// Separation (m) of the largest tangent.
+    pub d: f64,
+    /// The largest tangent dp/dd (Pa/m, > 0) between d_min and the pull-out.
+    pub tangent: f64,
+    /// The largest rise of the pressure (Pa) as d increases between d_min and the pull-out
+    /// (a node value above the lowest node value before it).
+    pub rise: f64,
+    /// That rise relative to the start pressure p_V(d_min) when it is compressive, else
+    /// relative to the curve's largest |p|.
+    pub relative_rise: f64,
+}
+
+/// A rise smaller than this fraction of the curve's largest |p| is rounding, not a rise.
+const RISE_TOLERANCE: f64 = 1e-6;
+
+/// The positive tangent of a retract branch between its start and its pull-out, if any.
+fn positive_tangent(c: &Curve, origin: f64) -> Option<PositiveTangent> {
+    let s = &c.interp;
+    let x = s.nodes();
+    let p = &c.pressure;
+    let x_limit = c.most_tensile.d - origin;
+    let scale = p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut low = p[0];
+    let mut rise: f64 = 0.0;
+    for i in 1..p.len() {
+        if x[i] > x_limit {
+            break;
+        }
+        rise = rise.max(p[i] - low);
+        low = low.min(p[i]);
+    }
+    if !(rise > RISE_TOLERANCE * scale) {
+        return None;
+    }
+    let (mut best_t, mut best_x) = (f64::NEG_INFINITY, 0.0);
+    for i in 0..x.len() - 1 {
+        if x[i] >= x_limit {
+            break;
+        }
+        let u_end = (x[i + 1] - x[i]).min(x_limit - x[i]);
+        let [_, c1, c2, c3] = s.coefficients(i);
+        let mut cand = vec![0.0, u_end];
+        if c3 != 0.0 {
+            let u = -c2 / (3.0 * c3);
+            if u > 0.0 && u < u_end {
+                cand.push(u);
+            }
+        }
+        for u in cand {
+            let t = c1 + u * (2.0 * c2 + 3.0 * u * c3);
+            if t > best_t {
+                best_t = t;
+                best_x = x[i] + u;
+            }
+        }
+    }
+    if !(best_t > 0.0) {
+        return None;
+    }
+    let relative_rise = if p[0] > 0.0 {
+        rise / p[0]
+    } else {
+        rise / scale
+    };
+    Some(PositiveTangent {
+        d: origin + best_x,
+        tangent: best_t,
+        rise,
+        relative_rise,
+    })
+}
+
 /// The two branches tabulated for one history d_min.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BranchSet {
     pub(crate) d_min: f64,
     pub(crate) approach: Curve,
     pub(crate) retract: Curve,
+    /// ln of the branch's pressure scale S = |p_V(d_min)| + |p_pull_out| + pressure_floor.
+    pub(crate) ln_scale: f64,
+    /// 1 / S.
+    pub(crate) inv_scale: f64,
+    pub(crate) positive_tangent: Option<PositiveTangent>,
+    pub(crate) measured: Option<BranchError>,
+}
+
+/// The interpolation error measured for one tabulated history: at the check points whose
+/// d_min lies between this branch and the next shallower one (this branch's own included),
+/// per path. Same metric as [`crate::ErrorStats`]; `+inf` where it is infinite.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BranchError {
+    /// Largest error on the approach branches.
+    pub approach: f64,
+    /// Largest error on the retract branches.
+    pub retract: f64,
 }
 
 impl BranchSet {
+    /// A branch set: the two curves of history `d_min`.
+    pub(crate) fn new(d_min: f64, approach: Curve, retract: Curve) -> BranchSet {
+        let positive_tangent = positive_tangent(&retract, d_min);
+        BranchSet {
+            d_min,
+            approach,
+            retract,
+            ln_scale: f64::NAN,
+            inv_scale: f64::NAN,
+            positive_tangent,
+            measured: None,
+        }
+    }
+
     /// The history (m).
     pub fn d_min(&self) -> f64 {
         self.d_min
@@ -289,12 +443,45 @@ impl BranchSet {
         self.retract.most_tensile
     }
 
-    fn curve(&self, path: Path) -> &Curve {
+    /// The positive tangent of the retract branch before its pull-out, if it has one (see
+    /// [`PositiveTangent`]).
+    pub fn positive_retract_tangent(&self) -> Option<PositiveTangent> {
+        self.positive_tangent
+    }
+
+    /// The interpolation error measured for this history and the interval of histories up
+    /// to the next branch, if recorded.
+    pub fn measured_error(&self) -> Option<BranchError> {
+        self.measured
+    }
+
+    /// The pressure scale S = |p_V(d_min)| + |p_pull_out| + pressure_floor (Pa) by which
+    /// the rule in d_min normalises this branch.
+    pub fn pressure_scale(&self) -> f64 {
+        1.0 / self.inv_scale
+    }
+
+    pub(crate) fn curve(&self, path: Path) -> &Curve {
         match path {
             Path::Approach => &self.approach,
             Path::Retract => &self.retract,
         }
     }
+}
+
+/// The branches of the law with a positive retract tangent (see [`PositiveTangent`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PositiveRetractTangent {
+    /// Number of tabulated histories whose retract branch rises before its pull-out.
+    pub branches: usize,
+    /// Deepest and shallowest of them (m).
+    pub d_min_range: [f64; 2],
+    /// History (m) of the largest tangent.
+    pub worst_d_min: f64,
+    /// The largest tangent itself.
+    pub worst: PositiveTangent,
+    /// The largest relative rise over those branches.
+    pub largest_relative_rise: f64,
 }
 
 /// Everything of a law file besides the curves.
@@ -329,22 +516,56 @@ pub struct ContactLaw {
     pub(crate) virgin: Curve,
     pub(crate) grid: Vec<f64>,
     pub(crate) branches: Vec<BranchSet>,
+    /// The pressure floor (Pa) of the error metric and of the branch scales.
+    pub(crate) floor: f64,
+    pub(crate) positive_retract: Option<PositiveRetractTangent>,
     pub(crate) meta: Meta,
 }
 
-/// Where a d_min sits among the tabulated branches: p = (1-w) lower + w upper, the upper
-/// being the zero law when `upper` is `None`.
-struct Bracket<'a> {
-    lower: &'a BranchSet,
-    upper: Option<&'a BranchSet>,
-    w: f64,
+/// Where a d_min sits among the tabulated branches.
+enum Bracket {
+    /// On a tabulated history (or the only one): that branch alone.
+    Node(usize),
+    /// Between histories: the Lagrange weights `c` of the `len` branches from `first`, the
+    /// pressure scale S(d_min) = exp(sum c ln S_j), the bracketing pair (k, k + 1) and the
+    /// fraction `w` of the way from k to k + 1.
+    Between {
+        first: usize,
+        len: usize,
+        c: [f64; 4],
+        scale: f64,
+        k: usize,
+        w: f64,
+    },
+    /// Above the shallowest history, below the virgin reach: that branch scaled by (1 - w).
+    Above { w: f64 },
+    /// At or above the virgin reach above the table: the zero law.
+    Zero,
+}
+
+/// Lagrange weights at `t` of the nodes `g` (2 to 4 of them).
+#[inline]
+fn lagrange(g: &[f64], t: f64) -> [f64; 4] {
+    let mut c = [0.0; 4];
+    for j in 0..g.len() {
+        let mut v = 1.0;
+        for m in 0..g.len() {
+            if m != j {
+                v *= (t - g[m]) / (g[j] - g[m]);
+            }
+        }
+        c[j] = v;
+    }
+    c
 }
 
 impl ContactLaw {
-    /// Assembles and validates a law; error paths name the JSON keys.
+    /// Assembles and validates a law; error paths name the JSON keys. `floor` is the
+    /// pressure floor (Pa) of the branch scales.
     pub(crate) fn assemble(
         virgin: Curve,
-        branches: Vec<BranchSet>,
+        mut branches: Vec<BranchSet>,
+        floor: f64,
         meta: Meta,
     ) -> Result<ContactLaw, LawError> {
         if branches.is_empty() {
@@ -353,8 +574,14 @@ impl ContactLaw {
                 "at least one branch is required",
             ));
         }
+        if !(floor.is_finite() && floor >= 0.0) {
+            return Err(LawError::format(
+                "interpolation.pressure_floor",
+                format!("{} Pa: must be finite and >= 0", fmt_num(floor)),
+            ));
+        }
         let grid: Vec<f64> = branches.iter().map(|b| b.d_min).collect();
-        for (k, b) in branches.iter().enumerate() {
+        for (k, b) in branches.iter_mut().enumerate() {
             let at = format!("branches[{k}]");
             if k > 0 && b.d_min <= grid[k - 1] {
                 return Err(LawError::format(
@@ -378,6 +605,18 @@ impl ContactLaw {
                     ));
                 }
             }
+            let scale = b.retract.pressure[0].abs() + b.pull_out().pressure.abs() + floor;
+            if !(scale.is_normal() && (1.0 / scale).is_normal()) {
+                return Err(LawError::format(
+                    format!("{at}.retract.pressure[0]"),
+                    format!(
+                        "the branch's pressure scale |p(d_min)| + |pull_out| + pressure_floor = {} Pa must be a positive normal number: a branch without pressure needs a pressure_floor > 0",
+                        fmt_num(scale)
+                    ),
+                ));
+            }
+            b.ln_scale = scale.ln();
+            b.inv_scale = 1.0 / scale;
         }
         if grid[0] < virgin.d[0] {
             return Err(LawError::format(
@@ -389,10 +628,37 @@ impl ContactLaw {
                 ),
             ));
         }
+        let mut positive: Option<PositiveRetractTangent> = None;
+        for b in &branches {
+            if let Some(t) = b.positive_tangent {
+                match &mut positive {
+                    None => {
+                        positive = Some(PositiveRetractTangent {
+                            branches: 1,
+                            d_min_range: [b.d_min, b.d_min],
+                            worst_d_min: b.d_min,
+                            worst: t,
+                            largest_relative_rise: t.relative_rise,
+                        })
+                    }
+                    Some(s) => {
+                        s.branches += 1;
+                        s.d_min_range[1] = b.d_min;
+                        s.largest_relative_rise = s.largest_relative_rise.max(t.relative_rise);
+                        if t.tangent > s.worst.tangent {
+                            s.worst = t;
+                            s.worst_d_min = b.d_min;
+                        }
+                    }
+                }
+            }
+        }
         Ok(ContactLaw {
             virgin,
             grid,
             branches,
+            floor,
+            positive_retract: positive,
             meta,
         })
     }
@@ -413,9 +679,23 @@ impl ContactLaw {
     }
 
     /// The deepest and shallowest tabulated d_min (m). Histories deeper than the first are
-    /// out of range; above the last the law blends to the zero law at the virgin reach.
+    /// out of range ([`Region::BelowTable`]); above the last the law blends to the zero law
+    /// at the virgin reach ([`Region::AboveTable`], not measured).
     pub fn d_min_range(&self) -> (f64, f64) {
         (self.grid[0], self.grid[self.grid.len() - 1])
+    }
+
+    /// The pressure floor (Pa): added to the denominator of the error metric, so that
+    /// pressures far below the law's own scale are judged against it rather than against
+    /// themselves, and to every branch's pressure scale.
+    pub fn pressure_floor(&self) -> f64 {
+        self.floor
+    }
+
+    /// The branches whose retract branch rises before its pull-out (a positive tangent:
+    /// a negative unloading stiffness for an FE code), if any.
+    pub fn positive_retract_tangent(&self) -> Option<&PositiveRetractTangent> {
+        self.positive_retract.as_ref()
     }
 
     /// The interpolation error the tabulator measured, if the file records it.
@@ -469,40 +749,59 @@ impl ContactLaw {
     /// Returns (p in Pa, dp/dd in Pa/m). On error the state is unchanged. In an implicit FE
     /// code call it on a copy of the state of the last converged increment during the
     /// Newton iterations and keep the updated state only when the increment converges.
+    /// [`ContactLaw::step`] returns the same with the [`Region`] of the point.
     ///
     /// With a one-number history, a retraction after a partial reload (a re-approach that
     /// turned at d_turn > d_min) follows the retract branch of d_min, and a re-approach
     /// after a partial retraction follows the approach branch of d_min: see
     /// [`ContactLaw::is_history_exact`].
     pub fn pressure(&self, d: f64, state: &mut State) -> Result<(f64, f64), LawError> {
+        self.step(d, state).map(|e| (e.pressure, e.tangent))
+    }
+
+    /// [`ContactLaw::pressure`] with the whole [`Evaluation`]: pressure, tangent, the
+    /// history and path after the call (also in `state`) and the [`Region`] of the point.
+    pub fn step(&self, d: f64, state: &mut State) -> Result<Evaluation, LawError> {
         check_separation(d)?;
         state.check()?;
         if d < state.d_min {
-            let (p, t) = self.deepen(d)?;
+            let (p, t, region) = self.deepen(d)?;
             *state = State {
                 d_min: d,
                 path: Path::Approach,
                 last_d: d,
                 d_turn: f64::INFINITY,
             };
-            return Ok((p, t));
+            return Ok(Evaluation {
+                pressure: p,
+                tangent: t,
+                d_min: d,
+                path: Path::Approach,
+                region,
+            });
         }
         let (path, d_turn) = match state.path {
             Path::Approach if d > state.last_d => (Path::Retract, state.last_d),
             Path::Retract if d < state.last_d => (Path::Approach, state.last_d),
             p => (p, state.d_turn),
         };
-        let (p, t) = self.branch_pressure(d, state.d_min, path)?;
+        let (p, t, region) = self.branch(d, state.d_min, path)?;
         state.path = path;
         state.last_d = d;
         state.d_turn = d_turn;
-        Ok((p, t))
+        Ok(Evaluation {
+            pressure: p,
+            tangent: t,
+            d_min: state.d_min,
+            path,
+            region,
+        })
     }
 
     /// Stateless evaluation at separation `d` (m) with history `d_min` (m, `+inf` for a
     /// virgin surface) on `path`: d < d_min deepens the history (the returned d_min is d and
     /// the path approach, the value the virgin envelope's); otherwise the branch `path` of
-    /// `d_min`.
+    /// `d_min`. The result says in which [`Region`] the point lies.
     pub fn evaluate(&self, d: f64, d_min: f64, path: Path) -> Result<Evaluation, LawError> {
         check_separation(d)?;
         if d_min.is_nan() || d_min == f64::NEG_INFINITY {
@@ -513,20 +812,22 @@ impl ContactLaw {
             ));
         }
         if d < d_min {
-            let (pressure, tangent) = self.deepen(d)?;
+            let (pressure, tangent, region) = self.deepen(d)?;
             return Ok(Evaluation {
                 pressure,
                 tangent,
                 d_min: d,
                 path: Path::Approach,
+                region,
             });
         }
-        let (pressure, tangent) = self.branch_pressure(d, d_min, path)?;
+        let (pressure, tangent, region) = self.branch(d, d_min, path)?;
         Ok(Evaluation {
             pressure,
             tangent,
             d_min,
             path,
+            region,
         })
     }
 
@@ -546,6 +847,11 @@ impl ContactLaw {
 
     /// The branch `path` of history `d_min` at d >= d_min, with its slope at fixed d_min.
     pub fn branch_pressure(&self, d: f64, d_min: f64, path: Path) -> Result<(f64, f64), LawError> {
+        self.branch(d, d_min, path).map(|(p, t, _)| (p, t))
+    }
+
+    /// [`ContactLaw::branch_pressure`] with the region of the point.
+    fn branch(&self, d: f64, d_min: f64, path: Path) -> Result<(f64, f64, Region), LawError> {
         check_separation(d)?;
         if d < d_min || d_min.is_nan() {
             return Err(LawError::Invalid {
@@ -554,9 +860,7 @@ impl ContactLaw {
                 allowed: "a branch is defined for d >= d_min",
             });
         }
-        let Some(br) = self.bracket(d_min)? else {
-            return Ok((0.0, 0.0));
-        };
+        let br = self.bracket(d_min)?;
         Ok(self.blend(&br, d - d_min, d_min, path))
     }
 
@@ -565,13 +869,14 @@ impl ContactLaw {
         if d_min.is_nan() {
             return Err(LawError::invalid("d_min", d_min, "a number"));
         }
-        let Some(br) = self.bracket(d_min)? else {
-            return Ok(d_min);
+        let end = match self.bracket(d_min)? {
+            Bracket::Zero => 0.0,
+            Bracket::Node(k) => self.branches[k].curve(path).x_end(),
+            Bracket::Above { .. } => self.branches[self.grid.len() - 1].curve(path).x_end(),
+            Bracket::Between { first, len, .. } => self.branches[first..first + len]
+                .iter()
+                .fold(0.0f64, |m, b| m.max(b.curve(path).x_end())),
         };
-        let mut end = br.lower.curve(path).x_end();
-        if let (Some(u), true) = (br.upper, br.w > 0.0) {
-            end = end.max(u.curve(path).x_end());
-        }
         Ok(d_min + end)
     }
 
@@ -580,7 +885,8 @@ impl ContactLaw {
     /// re-approach after a retraction that went beyond the retract reach. False after a
     /// partial reload (retract with d_turn > d_min) or a partial retraction (approach with
     /// d_turn below the retract reach): there the law uses the branch of d_min while the
-    /// real surface also remembers d_turn.
+    /// real surface also remembers d_turn. (Whether the point lies in the measured region
+    /// is a separate question: [`Evaluation::region`].)
     pub fn is_history_exact(&self, state: &State) -> bool {
         if state.is_virgin() || state.d_turn == f64::INFINITY {
             return true;
@@ -594,79 +900,144 @@ impl ContactLaw {
         }
     }
 
+    /// Where a history `d_min` (m) lies relative to the table: [`Region::BelowTable`] deeper
+    /// than the deepest branch (evaluation there is an error), [`Region::Measured`] within
+    /// the tabulated range, [`Region::AboveTable`] between the shallowest branch and the
+    /// virgin reach (the law blends to zero there, not measured), [`Region::BeyondReach`]
+    /// at or beyond the virgin reach, including `+inf` (a surface never touched: the law
+    /// is exactly zero there, as the model is). NaN is below the table (no value).
+    pub fn history_region(&self, d_min: f64) -> Region {
+        let (lo, hi) = self.d_min_range();
+        if !(d_min >= lo) {
+            Region::BelowTable
+        } else if d_min <= hi {
+            Region::Measured
+        } else if d_min < self.virgin.reach() {
+            Region::AboveTable
+        } else {
+            Region::BeyondReach
+        }
+    }
+
     /// The virgin value on a deepening approach; errors below the tabulated histories.
-    fn deepen(&self, d: f64) -> Result<(f64, f64), LawError> {
+    fn deepen(&self, d: f64) -> Result<(f64, f64, Region), LawError> {
         if d < self.grid[0] {
             return Err(self.too_deep("separation d", d));
         }
-        Ok(self.virgin.at_x(d))
+        if d > self.virgin.reach() {
+            return Ok((0.0, 0.0, Region::BeyondReach));
+        }
+        let (p, t) = self.virgin.at_x(d);
+        Ok((p, t, Region::Measured))
     }
 
     fn too_deep(&self, what: &str, v: f64) -> LawError {
         LawError::OutOfRange(format!(
-            "{what} = {} m is deeper than the law was tabulated for: d_min covers [{}, {}] m \
-             (tabulate again with a smaller d_min_lo)",
+            "{what} = {} m is deeper than the law was tabulated for (region below_table): \
+             d_min covers [{}, {}] m (tabulate again with a smaller d_min_lo)",
             fmt_num(v),
             fmt_num(self.grid[0]),
             fmt_num(self.grid[self.grid.len() - 1])
         ))
     }
 
-    /// The neighbouring branches of `d_min`; `None` where the law is zero (d_min at or
-    /// above the virgin reach and above every tabulated branch).
+    /// The branches that carry `d_min`.
     #[inline]
-    fn bracket(&self, d_min: f64) -> Result<Option<Bracket<'_>>, LawError> {
+    fn bracket(&self, d_min: f64) -> Result<Bracket, LawError> {
         let n = self.grid.len();
         if d_min < self.grid[0] {
             return Err(self.too_deep("history d_min", d_min));
         }
         let last = self.grid[n - 1];
-        if d_min > last {
+        if d_min >= last {
+            if d_min == last {
+                return Ok(Bracket::Node(n - 1));
+            }
             let top = self.virgin.reach();
             if d_min >= top {
-                return Ok(None);
+                return Ok(Bracket::Zero);
             }
-            return Ok(Some(Bracket {
-                lower: &self.branches[n - 1],
-                upper: None,
+            return Ok(Bracket::Above {
                 w: (d_min - last) / (top - last),
-            }));
+            });
         }
         let k = self.grid.partition_point(|&g| g <= d_min) - 1;
-        if k + 1 == n {
-            return Ok(Some(Bracket {
-                lower: &self.branches[k],
-                upper: None,
-                w: 0.0,
-            }));
+        if self.grid[k] == d_min {
+            return Ok(Bracket::Node(k));
+        }
+        let len = n.min(4);
+        let first = (k.saturating_sub(1)).min(n - len);
+        let g = &self.grid[first..first + len];
+        let c = lagrange(g, d_min);
+        let mut ln_s = 0.0;
+        for (cj, b) in c.iter().zip(&self.branches[first..first + len]) {
+            ln_s += cj * b.ln_scale;
         }
         let (g0, g1) = (self.grid[k], self.grid[k + 1]);
-        Ok(Some(Bracket {
-            lower: &self.branches[k],
-            upper: Some(&self.branches[k + 1]),
+        Ok(Bracket::Between {
+            first,
+            len,
+            c,
+            scale: ln_s.exp(),
+            k,
             w: (d_min - g0) / (g1 - g0),
-        }))
+        })
     }
 
+    /// Pressure, tangent and region at x = d - d_min on `path` of the bracketed history.
     #[inline]
-    fn blend(&self, br: &Bracket<'_>, x: f64, d_min: f64, path: Path) -> (f64, f64) {
-        let lo = br.lower.curve(path);
-        let pv = self.virgin.at_x(d_min).0;
-        let v = 1.0 - br.w;
-        let (p0, t0) = lo.at_x(x);
-        let (mut p, mut t) = (v * p0, v * t0);
-        let mut start = v * lo.interp.first_value();
-        let mut fade = lo.fade;
-        if let (Some(up), true) = (br.upper, br.w > 0.0) {
-            let up = up.curve(path);
-            let (p1, t1) = up.at_x(x);
-            p += br.w * p1;
-            t += br.w * t1;
-            start += br.w * up.interp.first_value();
-            fade = v * lo.fade + br.w * up.fade;
+    fn blend(&self, br: &Bracket, x: f64, d_min: f64, path: Path) -> (f64, f64, Region) {
+        match *br {
+            Bracket::Zero => (0.0, 0.0, Region::BeyondReach),
+            Bracket::Node(k) => {
+                let c = self.branches[k].curve(path);
+                if x > c.x_end() {
+                    (0.0, 0.0, Region::BeyondReach)
+                } else {
+                    let (p, t) = c.at_x(x);
+                    (p, t, Region::Measured)
+                }
+            }
+            Bracket::Above { w } => {
+                let lo = self.branches[self.grid.len() - 1].curve(path);
+                if x > lo.x_end() {
+                    return (0.0, 0.0, Region::BeyondReach);
+                }
+                let v = 1.0 - w;
+                let (p0, t0) = lo.at_x(x);
+                let pv = self.virgin.at_x(d_min).0;
+                let (dp, dt) = correction(pv - v * lo.interp.first_value(), lo.fade, x);
+                (v * p0 + dp, v * t0 + dt, Region::AboveTable)
+            }
+            Bracket::Between {
+                first,
+                len,
+                c,
+                scale,
+                k,
+                w,
+            } => {
+                let (mut p, mut t, mut start) = (0.0, 0.0, 0.0);
+                let mut end: f64 = 0.0;
+                for (cj, b) in c.iter().zip(&self.branches[first..first + len]) {
+                    let cu = b.curve(path);
+                    let a = cj * scale * b.inv_scale;
+                    let (pj, tj) = cu.at_x(x);
+                    p += a * pj;
+                    t += a * tj;
+                    start += a * cu.interp.first_value();
+                    end = end.max(cu.x_end());
+                }
+                if x > end {
+                    return (0.0, 0.0, Region::BeyondReach);
+                }
+                let fade = (1.0 - w) * self.branches[k].curve(path).fade
+                    + w * self.branches[k + 1].curve(path).fade;
+                let pv = self.virgin.at_x(d_min).0;
+                let (dp, dt) = correction(pv - start, fade, x);
+                (p + dp, t + dt, Region::Measured)
+            }
         }
-        let (dp, dt) = correction(pv - start, fade, x);
-        (p + dp, t + dt)
     }
 }
 

@@ -49,6 +49,7 @@ pub mod toy;
 pub use error::LawError;
 pub use format::{FORMAT_NAME, FORMAT_VERSION, MAX_FILE_BYTES, RULE_IN_D, RULE_IN_D_MIN};
 pub use law::{
-    BranchSet, ContactLaw, Curve, Evaluation, Path, Point, State, MOST_TENSILE_TOLERANCE,
+    BranchError, BranchSet, ContactLaw, Curve, Evaluation, Path, Point, PositiveRetractTangent,
+    PositiveTangent, Region, State, MOST_TENSILE_TOLERANCE,
 };
 pub use meta::{ErrorStats, MeasuredError, PartialReloadError, TabulationInfo};

@@ -139,6 +139,11 @@ impl Steffen {
         )
     }
 
+    /// The cubic of interval i: y = c0 + c1 t + c2 t^2 + c3 t^3 with t = x - x_i.
+    pub(crate) fn coefficients(&self, i: usize) -> [f64; 4] {
+        self.coef[i]
+    }
+
     /// The node abscissae.
     pub fn nodes(&self) -> &[f64] {
         &self.x

@@ -32,7 +32,7 @@ fn the_file_has_the_required_self_describing_keys_and_no_null() {
     assert!(!text.contains("null") && !text.contains("NaN") && !text.contains("inf"));
     let v: Value = serde_json::from_str(&text).unwrap();
     assert_eq!(v["format"], "stiction-contact-law");
-    assert_eq!(v["version"], 1);
+    assert_eq!(v["version"], 2);
     assert_eq!(
         v["units"],
         json!({"d": "m", "d_min": "m", "pressure": "Pa", "tangent": "Pa/m"})
@@ -46,7 +46,19 @@ fn the_file_has_the_required_self_describing_keys_and_no_null() {
         .unwrap()
         .contains("mean plane of asperity heights"));
     assert_eq!(v["interpolation"]["in_d"]["rule"], "steffen-1990");
-    assert_eq!(v["interpolation"]["in_d_min"]["rule"], "linear-at-fixed-x");
+    assert_eq!(
+        v["interpolation"]["in_d_min"]["rule"],
+        "scaled-cubic-at-fixed-x"
+    );
+    assert!(
+        v["interpolation"]["pressure_floor"]["value"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
+    for k in ["measured", "beyond_reach", "above_table", "below_table"] {
+        assert!(v["regions"][k].is_string(), "regions.{k}");
+    }
     let m = &v["interpolation"]["measured_error"];
     for k in ["metric", "method", "seed"] {
         assert!(!m[k].is_null(), "{k}");
@@ -74,6 +86,10 @@ fn the_file_has_the_required_self_describing_keys_and_no_null() {
     }
     assert!(b["pull_out"]["pressure"].as_f64().unwrap() < 0.0);
     assert!(b["approach"]["most_tensile"]["d"].is_number());
+    for k in ["approach", "retract"] {
+        let e = b["measured_error"][k].as_f64().unwrap();
+        assert!((0.0..=2e-4).contains(&e), "{k}: {e}");
+    }
     assert!(v["virgin"]["d"].is_array() && v["virgin"]["reach"].is_number());
     assert!(v["scene"].is_object());
     assert!(v["length_scale"].is_number() && v["tabulation"]["converged"].is_boolean());
@@ -117,7 +133,58 @@ fn corrupted_files_give_errors_naming_the_field_and_the_value() {
             Box::new(|v| v["format"] = json!("other-law")),
             "other-law",
         ),
-        ("version", Box::new(|v| v["version"] = json!(2)), "2"),
+        ("version", Box::new(|v| v["version"] = json!(3)), "3"),
+        (
+            "version",
+            Box::new(|v| v["version"] = json!(1)),
+            "tabulate it again",
+        ),
+        (
+            "interpolation.in_d_min.rule",
+            Box::new(|v| v["interpolation"]["in_d_min"]["rule"] = json!("linear-at-fixed-x")),
+            "linear-at-fixed-x",
+        ),
+        (
+            "interpolation.pressure_floor.value",
+            Box::new(|v| v["interpolation"]["pressure_floor"]["value"] = json!(-1.0)),
+            "-1",
+        ),
+        (
+            "interpolation.pressure_floor",
+            Box::new(|v| {
+                v["interpolation"]
+                    .as_object_mut()
+                    .unwrap()
+                    .remove("pressure_floor");
+            }),
+            "missing",
+        ),
+        (
+            "regions.elsewhere",
+            Box::new(|v| v["regions"]["elsewhere"] = json!("x")),
+            "unknown key",
+        ),
+        (
+            "branches[2].measured_error.retract",
+            Box::new(|v| v["branches"][2]["measured_error"]["retract"] = json!(-1.0)),
+            ">= 0",
+        ),
+        (
+            "branches[2].retract.positive_tangent",
+            Box::new(|v| {
+                v["branches"][2]["retract"]["positive_tangent"] =
+                    json!({"d": 1e-9, "tangent": 1e15, "rise": 1.0, "relative_rise": 0.1})
+            }),
+            "must match the curve",
+        ),
+        (
+            "positive_retract_tangent",
+            Box::new(|v| {
+                v["positive_retract_tangent"] = json!({"branches": 3, "d_min_range": [1e-9, 2e-9],
+                    "worst": {}, "largest_relative_rise": 0.1, "advice": "none"})
+            }),
+            "must match the branches",
+        ),
         ("units.d", Box::new(|v| v["units"]["d"] = json!("nm")), "nm"),
         (
             "interpolation.in_d.rule",
@@ -232,7 +299,7 @@ fn text_that_is_not_a_law_is_rejected_without_panic() {
     }
     let big = law()
         .to_json_string()
-        .replacen("\"version\": 1", "\"version\": 1e400", 1);
+        .replacen("\"version\": 2", "\"version\": 1e400", 1);
     assert!(matches!(
         ContactLaw::from_json_str(&big),
         Err(LawError::Json(_))

@@ -21,11 +21,13 @@ use crate::switch::{rough_surface, Laws, SwitchModel};
 use crate::{Progress, Silent};
 use contact_core::numeric::{brent_from, expand_bracket, Expansion, Sample, Tolerance};
 use contact_core::{Path as SurfacePath, SurfaceLaw};
-use contact_law::tabulate::{self, Branch, GridSpec, LawSource, ReloadSource, Tabulation};
-use contact_law::{ContactLaw, MeasuredError, PartialReloadError};
+use contact_law::tabulate::{
+    self, Branch, GridSpec, LawSource, ReloadSource, Tabulation, DEFAULT_FLOOR_FRACTION,
+};
+use contact_law::{ContactLaw, MeasuredError, PartialReloadError, PositiveRetractTangent};
 use gw_surface::GwHistory;
 use serde::Serialize;
-use std::cell::Cell;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 /// The default grid of histories starts this many sigma_s below the deepest end of impact
@@ -33,14 +35,14 @@ use std::time::Instant;
 /// inside the table rather than on its edge.
 pub const BELOW_IMPACT_SIGMAS: f64 = 0.5;
 
-/// The "first touch" that ends the default grid of histories: the largest separation at
-/// which the virgin approach pressure reaches this fraction of the reference pressure (the
-/// pull-out pressure of the deepest history; the virgin pressure there for a law without
-/// adhesion). Shallower histories carry pressures below the error the law is allowed at
-/// the deepest history (1e-3 of its pull-out); taking the geometric first touch instead
-/// (the highest asperity, 9 sigma_s) would spend most branches on pressures below 1e-9 Pa
-/// (the rule in d_min is relative, and the Gaussian tail changes fastest there).
-pub const TOUCH_FRACTION: f64 = 1e-3;
+/// The pressure floor of the law's error metric, and the "first touch" that ends the
+/// default grid of histories: this fraction of the pressure scale of the deepest history
+/// (the larger of its virgin pressure and its pull-out). The first touch is the largest
+/// separation at which the virgin pressure or the pull-out reaches the floor: shallower
+/// histories carry pressures below it (the law blends them to zero, region `above_table`);
+/// taking the geometric first touch instead (the highest asperity, 9 sigma_s) would spend
+/// branches on pressures down to 1e-30 Pa.
+pub const FLOOR_FRACTION: f64 = DEFAULT_FLOOR_FRACTION;
 
 /// Partial reloads measured: the reload turns at d_min + f (approach reach - d_min) for
 /// each of these f.
@@ -67,40 +69,31 @@ pub const RELOAD_POINTS: usize = 24;
 /// The scene's rough surface seen by the tabulator: one-number histories
 /// `GwHistory::Flat { deepest: d_min }`, with a count of surface evaluations for the
 /// progress bar.
+/// `Sync`: the tabulator evaluates it from several threads.
 pub struct SceneSurface<'a> {
     gw: &'a RoughSurface,
     precision: switch_1d::Precision,
-    evaluations: Cell<u64>,
-    progress: &'a dyn Progress,
+    evaluations: AtomicU64,
 }
 
 impl<'a> SceneSurface<'a> {
-    /// The source for `gw`; pull-outs are searched to `precision`; surface evaluations
-    /// are counted on `progress`.
-    pub fn new(
-        gw: &'a RoughSurface,
-        precision: switch_1d::Precision,
-        progress: &'a dyn Progress,
-    ) -> Self {
+    /// The source for `gw`; pull-outs are searched to `precision`.
+    pub fn new(gw: &'a RoughSurface, precision: switch_1d::Precision) -> Self {
         Self {
             gw,
             precision,
-            evaluations: Cell::new(0),
-            progress,
+            evaluations: AtomicU64::new(0),
         }
     }
 
-    /// Surface pressure evaluations so far (tabulation, pull-out searches, measurements).
+    /// Surface pressure evaluations so far (tabulation, pull-out searches, measurements;
+    /// a pull-out search counts 48).
     pub fn evaluations(&self) -> u64 {
-        self.evaluations.get()
+        self.evaluations.load(Ordering::Relaxed)
     }
 
     fn tick(&self, n: u64) {
-        let done = self.evaluations.get() + n;
-        self.evaluations.set(done);
-        if done % 64 < n {
-            self.progress.set(done);
-        }
+        self.evaluations.fetch_add(n, Ordering::Relaxed);
     }
 
     fn history(d_min: f64) -> GwHistory {
@@ -178,12 +171,16 @@ pub struct Histories {
     /// How far below the deepest d_e the grid starts (m), default range.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub below_deepest_d_e: Option<f64>,
-    /// The reference pressure of the first touch (Pa), default range.
+    /// The pressure scale of the deepest history (Pa): the larger of its virgin pressure
+    /// and its pull-out (default range: the reference of the first touch).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub first_touch_reference: Option<f64>,
     /// The first touch's fraction of it, default range.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub first_touch_fraction: Option<f64>,
+    /// The pressure floor of the error metric (Pa): [`FLOOR_FRACTION`] of the pressure
+    /// scale of the deepest history.
+    pub pressure_floor: f64,
     /// Where the first asperity (at 9 sigma_s) jumps in on a virgin approach (m): the
     /// virgin envelope is tabulated up to it, and zero beyond.
     pub virgin_reach: f64,
@@ -212,6 +209,20 @@ pub struct BranchSummary {
     pub retract_reach: f64,
     /// Nodes of the approach and retract branches.
     pub nodes: usize,
+    /// Largest measured error of this history and the interval up to the next one, on the
+    /// approach ...
+    #[serde(serialize_with = "error_number")]
+    pub measured_error_approach: f64,
+    /// ... and on the retract branches.
+    #[serde(serialize_with = "error_number")]
+    pub measured_error_retract: f64,
+    /// The largest positive tangent of the retract branch before its pull-out (Pa/m),
+    /// absent when the branch falls monotonically.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub positive_retract_tangent: Option<f64>,
+    /// The rise of the pressure on that branch, relative to its start.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub retract_relative_rise: Option<f64>,
 }
 
 /// A law tabulation.
@@ -235,8 +246,13 @@ pub struct LawResult {
     pub virgin_nodes: usize,
     /// Nodes of all curves.
     pub nodes: usize,
-    /// Refinement tolerance.
+    /// Tolerance on the measured error.
     pub tolerance: f64,
+    /// The pressure floor of the error metric (Pa).
+    pub pressure_floor: f64,
+    /// The retract branches that rise before their pull-out, if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub positive_retract_tangent: Option<PositiveRetractTangent>,
     /// Interpolation error measured against the surface at points off every grid.
     pub measured_error: MeasuredError,
     /// Error of the one-number history after a partial reload (the law retracts along the
@@ -246,7 +262,7 @@ pub struct LawResult {
     pub partial_reload_turn_fractions: Vec<f64>,
     /// Surface pressure evaluations of the tabulation and its measurement.
     pub source_evaluations: usize,
-    /// All refinements met the tolerance before a cap.
+    /// Every measured error is within the tolerance (no cap stopped a refinement).
     pub converged: bool,
     /// Wall time of the whole command (s).
     pub seconds: f64,
@@ -369,7 +385,7 @@ fn tabulate_inner(
     let sigma = gw.sigma_s();
     let virgin_reach = gw.reach(&GwHistory::VIRGIN, SurfacePath::Approach)?;
     let histories = match opts.d_min {
-        Some(g) => user_histories(g, sigma, virgin_reach)?,
+        Some(g) => user_histories(g, &gw, precision, virgin_reach)?,
         None => default_histories(scene, accuracy, &gw, precision, virgin_reach)?,
     };
     let mut options = match opts.d_min {
@@ -379,18 +395,24 @@ fn tabulate_inner(
     options.points_per_branch = opts.points;
     options.tolerance = opts.tolerance;
     options.max_branches = MAX_BRANCHES;
+    options.pressure_floor = Some(histories.pressure_floor);
 
-    let source = SceneSurface::new(&gw, precision, progress);
-    // a rough expectation of the surface evaluations, for the bar only
-    let expected = match opts.d_min {
-        Some(g) => 400 * g.n as u64 + 60_000,
-        None => 550_000,
+    let source = SceneSurface::new(&gw, precision);
+    // the bar: the tabulator's fraction of its work to 900, the partial reloads to 1000
+    progress.start(1000, "tabulating the contact law");
+    let done = AtomicU64::new(0);
+    let report = |f: f64| {
+        let v = (900.0 * f.clamp(0.0, 1.0)) as u64;
+        let before = done.fetch_max(v, Ordering::Relaxed);
+        if v > before {
+            progress.set(v);
+        }
     };
-    progress.start(expected, "surface evaluations");
     // the bar is removed whether the tabulation succeeds or not
-    let result = tabulate::tabulate(&source, &options).and_then(|law| {
+    let result = tabulate::tabulate_with_progress(&source, &options, &report).and_then(|law| {
         let partial =
             tabulate::measure_partial_reload(&law, &source, &TURN_FRACTIONS, RELOAD_POINTS)?;
+        progress.set(1000);
         Ok((law, partial))
     });
     progress.finish();
@@ -411,9 +433,31 @@ fn tabulate_inner(
         warnings.push(Warning::note(
             "law_not_converged",
             format!(
-                "the table misses the tolerance {:e} where it could not refine (a cap on nodes or branches, or a user's uniform grid of histories, which is not refined: give more of them or use the adaptive default), or measured an infinite error; the measured error (largest {:.2e}) says by how much",
+                "the table misses the tolerance {:e}: its largest measured error is {:.3e} (law.json, interpolation.measured_error and each branch's measured_error say where); a cap on nodes or branches stopped the refinement, or a user's uniform grid of histories (not refined) is too coarse: give more of them or use the adaptive default",
                 opts.tolerance,
                 measured_error.max()
+            ),
+        ));
+    }
+    let positive = law.positive_retract_tangent().copied();
+    if let Some(p) = &positive {
+        let remedy = if laws.reload == "bounded" {
+            "the reload reading is already bounded: the rise is the surface's own (near yield onset or in the adhesive part); use min(dp/dd, 0) as the Newton stiffness there"
+        } else {
+            "its cause is the eq-12 reload overshoot of asperities pressed beyond about 16 delta_CP (docs/theory.md section 2.5): tabulate with contact.reload = \"bounded\" to remove it, or use min(dp/dd, 0) as the Newton stiffness on retract branches"
+        };
+        warnings.push(Warning::note(
+            "positive_retract_tangent",
+            format!(
+                "{} of {} retract branches (d_min {:.4e} to {:.4e} m) rise before their pull-out: the pressure grows by up to {:.1} % as the gap opens, a tangent up to {:.3e} Pa/m (d_min = {:.4e} m, d = {:.4e} m), which an implicit FE code receives as a negative unloading stiffness; {remedy}",
+                p.branches,
+                law.branches().len(),
+                p.d_min_range[0],
+                p.d_min_range[1],
+                100.0 * p.largest_relative_rise,
+                p.worst.tangent,
+                p.worst_d_min,
+                p.worst.d
             ),
         ));
     }
@@ -427,6 +471,8 @@ fn tabulate_inner(
         virgin_nodes: law.virgin().d().len(),
         nodes,
         tolerance: opts.tolerance,
+        pressure_floor: law.pressure_floor(),
+        positive_retract_tangent: positive,
         measured_error,
         partial_reload: partial,
         partial_reload_turn_fractions: TURN_FRACTIONS.to_vec(),
@@ -491,44 +537,8 @@ fn default_histories(
             ),
         ));
     }
-    let virgin = GwHistory::VIRGIN;
-    let p_v =
-        |d: f64| -> Result<f64, ModelError> { Ok(gw.pressure(d, &virgin, SurfacePath::Approach)?) };
-    let pull = switch_1d::unload(gw, &GwHistory::Flat { deepest: lo }, lo, 0, precision)?
-        .pull_out_pressure;
-    let reference = if pull > 0.0 { pull } else { p_v(lo)?.abs() };
-    let threshold = TOUCH_FRACTION * reference;
-    // down from the reach until the virgin pressure reaches the threshold, then the root
-    let g = |d: f64| -> Result<f64, ModelError> { Ok(p_v(d)?.abs() - threshold) };
-    let top = Sample {
-        x: virgin_reach,
-        f: g(virgin_reach)?,
-    };
-    let found = if top.f >= 0.0 {
-        Some(virgin_reach)
-    } else {
-        match expand_bracket(
-            "first touch",
-            g,
-            top,
-            virgin_reach - 0.25 * sigma,
-            Expansion::Linear,
-            lo,
-        )? {
-            Some((above, below)) => Some(brent_from(
-                "first touch",
-                g,
-                below,
-                above,
-                Tolerance::absolute(1e-6 * sigma),
-            )?),
-            None => None,
-        }
-    };
-    let mut hi = found.unwrap_or(lo + 0.5 * (virgin_reach - lo));
-    if hi <= lo + 0.01 * sigma {
-        hi = (lo + 0.5 * sigma).min(lo + 0.5 * (virgin_reach - lo));
-    }
+    let (reference, floor) = pressure_scale(gw, lo, precision)?;
+    let hi = first_touch(gw, lo, virgin_reach, floor, precision)?;
     let down_to = match deepest {
         Some(d) => format!(
             "{} sigma_s = {:e} m below the deepest end-of-impact separation d_e = {:e} m of the scene's cycles, so that their own histories lie inside the table",
@@ -539,8 +549,8 @@ fn default_histories(
         None => "the surface scene's unload_from".into(),
     };
     let description = format!(
-        "adaptive grid of histories from the first touch d_min_hi = {:e} m (the largest separation at which the virgin approach pressure reaches {:e} of the reference pressure {:e} Pa, the pull-out pressure of the deepest history; shallower histories carry less) down to d_min_lo = {:e} m, {down_to}; refined where the law changes fastest. Histories above d_min_hi blend to zero at the virgin reach {:e} m (not measured).",
-        hi, TOUCH_FRACTION, reference, lo, virgin_reach
+        "adaptive grid of histories from the first touch d_min_hi = {:e} m (the largest separation at which the virgin pressure or the pull-out reaches the pressure floor {:e} Pa, {:e} of the pressure scale {:e} Pa of the deepest history; shallower histories carry less) down to d_min_lo = {:e} m, {down_to}; refined where the law changes fastest. Histories above d_min_hi blend to zero at the virgin reach {:e} m (region above_table, not measured).",
+        hi, floor, FLOOR_FRACTION, reference, lo, virgin_reach
     );
     Ok(Histories {
         rule: "adaptive".into(),
@@ -550,15 +560,112 @@ fn default_histories(
         cycles_d_e,
         below_deepest_d_e: deepest.map(|_| BELOW_IMPACT_SIGMAS * sigma),
         first_touch_reference: Some(reference),
-        first_touch_fraction: Some(TOUCH_FRACTION),
+        first_touch_fraction: Some(FLOOR_FRACTION),
+        pressure_floor: floor,
         virgin_reach,
         description,
     })
 }
 
+/// The pressure scale of the history `lo` (the larger of |p_V(lo)| and |p_pull_out(lo)|,
+/// Pa) and the pressure floor, [`FLOOR_FRACTION`] of it.
+fn pressure_scale(
+    gw: &RoughSurface,
+    lo: f64,
+    precision: switch_1d::Precision,
+) -> Result<(f64, f64), ModelError> {
+    let p_v = gw.pressure(lo, &GwHistory::VIRGIN, SurfacePath::Approach)?;
+    let pull = switch_1d::unload(gw, &GwHistory::Flat { deepest: lo }, lo, 0, precision)?
+        .pull_out_pressure;
+    let reference = p_v.abs().max(pull.abs());
+    if !(reference > 0.0 && reference.is_finite()) {
+        return Err(ModelError::argument(
+            "d_min",
+            format!("{} m (the deepest history)", num(lo)),
+            "a history in contact: the surface carries no pressure there",
+        ));
+    }
+    Ok((reference, FLOOR_FRACTION * reference))
+}
+
+/// The first touch: the largest separation below the virgin reach at which the virgin
+/// pressure or the pull-out of that history reaches `floor` (at least a little above
+/// `lo`).
+fn first_touch(
+    gw: &RoughSurface,
+    lo: f64,
+    virgin_reach: f64,
+    floor: f64,
+    precision: switch_1d::Precision,
+) -> Result<f64, ModelError> {
+    let sigma = gw.sigma_s();
+    let virgin = GwHistory::VIRGIN;
+    let p_v =
+        |d: f64| -> Result<f64, ModelError> { Ok(gw.pressure(d, &virgin, SurfacePath::Approach)?) };
+    let pull = |d: f64| -> Result<f64, ModelError> {
+        Ok(
+            switch_1d::unload(gw, &GwHistory::Flat { deepest: d }, d, 0, precision)?
+                .pull_out_pressure
+                .abs(),
+        )
+    };
+    // the largest root of g = |p(d)| - floor below the reach, stepping down by sigma_s/4
+    let largest_root = |g: &dyn Fn(f64) -> Result<f64, ModelError>,
+                        from: f64|
+     -> Result<Option<f64>, ModelError> {
+        let top = Sample {
+            x: from,
+            f: g(from)?,
+        };
+        if top.f >= 0.0 {
+            return Ok(Some(from));
+        }
+        match expand_bracket(
+            "first touch",
+            g,
+            top,
+            from - 0.25 * sigma,
+            Expansion::Linear,
+            lo,
+        )? {
+            Some((above, below)) => Ok(Some(brent_from(
+                "first touch",
+                g,
+                below,
+                above,
+                Tolerance::absolute(1e-6 * sigma),
+            )?)),
+            None => Ok(None),
+        }
+    };
+    let g_v = |d: f64| -> Result<f64, ModelError> { Ok(p_v(d)?.abs() - floor) };
+    let d_v = largest_root(&g_v, virgin_reach)?.unwrap_or(lo);
+    // the pull-out of a light touch can exceed its virgin pressure (strong adhesion)
+    let g_p = |d: f64| -> Result<f64, ModelError> { Ok(pull(d)? - floor) };
+    let d_p = if d_v < virgin_reach && g_p(d_v)? > 0.0 {
+        largest_root(&g_p, 0.5 * (d_v + virgin_reach))?.unwrap_or(d_v)
+    } else {
+        d_v
+    };
+    let mut hi = d_v.max(d_p);
+    if hi >= virgin_reach {
+        hi = lo + 0.9 * (virgin_reach - lo);
+    }
+    if hi <= lo + 0.01 * sigma {
+        hi = (lo + 0.5 * sigma).min(lo + 0.5 * (virgin_reach - lo));
+    }
+    Ok(hi)
+}
+
 /// The user's grid, checked against the surface: inside 20 sigma_s of the mean plane and
 /// below the virgin reach (no history is shallower than the first touch).
-fn user_histories(grid: GridSpec, sigma: f64, virgin_reach: f64) -> Result<Histories, ModelError> {
+fn user_histories(
+    grid: GridSpec,
+    gw: &RoughSurface,
+    precision: switch_1d::Precision,
+    virgin_reach: f64,
+) -> Result<Histories, ModelError> {
+    let sigma = gw.sigma_s();
     let nodes = grid.nodes();
     let (lo, hi) = (nodes[0], nodes[nodes.len() - 1]);
     let lim = 20.0 * sigma;
@@ -583,6 +690,7 @@ fn user_histories(grid: GridSpec, sigma: f64, virgin_reach: f64) -> Result<Histo
             ),
         ));
     }
+    let (reference, floor) = pressure_scale(gw, lo, precision)?;
     Ok(Histories {
         rule: format!("uniform {grid}"),
         d_min_lo: lo,
@@ -590,11 +698,12 @@ fn user_histories(grid: GridSpec, sigma: f64, virgin_reach: f64) -> Result<Histo
         deepest_d_e: None,
         cycles_d_e: Vec::new(),
         below_deepest_d_e: None,
-        first_touch_reference: None,
+        first_touch_reference: Some(reference),
         first_touch_fraction: None,
+        pressure_floor: floor,
         virgin_reach,
         description: format!(
-            "the user's uniform grid of {} histories from {:e} m to {:e} m; histories above the last blend to zero at the virgin reach {:e} m (not measured)",
+            "the user's uniform grid of {} histories from {:e} m to {:e} m; histories above the last blend to zero at the virgin reach {:e} m (region above_table, not measured)",
             grid.n, lo, hi, virgin_reach
         ),
     })
@@ -644,8 +753,23 @@ fn branch_summary(law: &ContactLaw) -> Vec<BranchSummary> {
             approach_reach: b.approach().reach(),
             retract_reach: b.retract().reach(),
             nodes: b.approach().d().len() + b.retract().d().len(),
+            measured_error_approach: b.measured_error().map_or(f64::NAN, |e| e.approach),
+            measured_error_retract: b.measured_error().map_or(f64::NAN, |e| e.retract),
+            positive_retract_tangent: b.positive_retract_tangent().map(|t| t.tangent),
+            retract_relative_rise: b.positive_retract_tangent().map(|t| t.relative_rise),
         })
         .collect()
+}
+
+/// An error value for serde: a number when finite, else `"inf"` or `"nan"` (never null).
+fn error_number<S: serde::Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+    if v.is_finite() {
+        s.serialize_f64(*v)
+    } else if v.is_nan() {
+        s.serialize_str("nan")
+    } else {
+        s.serialize_str("inf")
+    }
 }
 
 /// The guards at the deepest history tabulated.

@@ -28,10 +28,13 @@ int main(int argc, char **argv) {
     printf("layout %zu %zu %zu %zu %zu %zu\n", sizeof(scl_state), offsetof(scl_state, d_min),
            offsetof(scl_state, last_d), offsetof(scl_state, d_turn), offsetof(scl_state, path),
            offsetof(scl_state, flags));
-    printf("consts %d %d %d %d %d %d %d %d %d %d %d %d %d\n", SCL_OK, SCL_ERR_NULL, SCL_ERR_IO,
-           SCL_ERR_FORMAT, SCL_ERR_OUT_OF_RANGE, SCL_ERR_INVALID, SCL_ERR_INTERNAL,
-           SCL_PATH_APPROACH, SCL_PATH_RETRACT, SCL_STATE_TOUCHED, SCL_STATE_TURNED,
-           SCL_ABI_VERSION, scl_abi_version());
+    printf("consts %d %d %d %d %d %d %d %d %d %d %d %d %d %d %d\n", SCL_OK, SCL_ERR_NULL,
+           SCL_ERR_IO, SCL_ERR_FORMAT, SCL_ERR_OUT_OF_RANGE, SCL_ERR_INVALID, SCL_ERR_INTERNAL,
+           SCL_BEYOND_REACH, SCL_ABOVE_TABLE, SCL_PATH_APPROACH, SCL_PATH_RETRACT,
+           SCL_STATE_TOUCHED, SCL_STATE_TURNED, SCL_ABI_VERSION, scl_abi_version());
+    printf("has_value %d %d %d %d %d\n", SCL_HAS_VALUE(SCL_OK), SCL_HAS_VALUE(SCL_BEYOND_REACH),
+           SCL_HAS_VALUE(SCL_ABOVE_TABLE), SCL_HAS_VALUE(SCL_ERR_OUT_OF_RANGE),
+           SCL_HAS_VALUE(SCL_ERR_INVALID));
 
     /* error paths: codes, untouched outputs, messages */
     rc = scl_law_load(NULL, &law);
