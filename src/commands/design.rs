@@ -92,8 +92,8 @@ pub struct ThresholdCommand {
     /// Accuracy mode (replaces the scene's); its pull-out tolerance sets the uncertainty.
     #[arg(long, value_enum)]
     pub accuracy: Option<AccuracyArg>,
-    /// A second requirement beside freedom from stiction, QUANTITY<LIMIT or
-    /// QUANTITY>LIMIT: contact_resistance (ohm; needs contact.resistivity,
+    /// A second requirement beside freedom from stiction, `QUANTITY<LIMIT` or
+    /// `QUANTITY>LIMIT`: contact_resistance (ohm; needs contact.resistivity,
     /// contact.mean_free_path and switch.electrode_area) or real_contact_fraction (-), under
     /// the hold voltage after the last cycle; reports the window where both hold.
     #[arg(long, value_name = "QUANTITY<LIMIT")]
@@ -207,8 +207,8 @@ pub struct MapCommand {
     /// Accuracy mode (replaces the scene's).
     #[arg(long, value_enum)]
     pub accuracy: Option<AccuracyArg>,
-    /// A second requirement beside freedom from stiction, QUANTITY<LIMIT or
-    /// QUANTITY>LIMIT: contact_resistance (ohm; needs contact.resistivity,
+    /// A second requirement beside freedom from stiction, `QUANTITY<LIMIT` or
+    /// `QUANTITY>LIMIT`: contact_resistance (ohm; needs contact.resistivity,
     /// contact.mean_free_path and switch.electrode_area) or real_contact_fraction (-), under
     /// the hold voltage after the last cycle; reports the window where both hold.
     #[arg(long, value_name = "QUANTITY<LIMIT")]

@@ -873,8 +873,7 @@ impl<'a> Reader<'a> {
                         "hold_force = {} N needs the area it acts on: the hold pressure per contact area is hold_force / (contact_area_fraction x electrode_area)",
                         num(f)
                     ),
-                }
-                .into());
+                });
             }
         }
         Ok(SwitchGeometrySpec {
