@@ -38,7 +38,15 @@ pub fn design_threshold(
     let acc = accuracy_arg(accuracy)?;
     let vary = vary.to_string();
     let r = crate::pool::detach(py, move || {
-        design::threshold_with(&scene, &registry(), &vary, from_, to, acc, require.as_deref())
+        design::threshold_with(
+            &scene,
+            &registry(),
+            &vary,
+            from_,
+            to,
+            acc,
+            require.as_deref(),
+        )
     })
     .or_raise()?;
     let out = result_to_py(py, &r)?;

@@ -4,6 +4,7 @@
 //! JSON path, so that each error names the key and the value (`branches[3].retract.d[17]`).
 
 use crate::error::{fmt_num, LawError};
+use crate::json::{check_no_null, join};
 use crate::law::{BranchError, BranchSet, ContactLaw, Curve, Meta, Point, PositiveTangent};
 use crate::meta::{
     from_non_finite_word, non_finite_word, ErrorStats, MeasuredError, PartialReloadError,
@@ -109,14 +110,6 @@ fn describe(v: &Value) -> String {
         }
         Value::Array(a) => format!("an array of {} items", a.len()),
         Value::Object(_) => "an object".into(),
-    }
-}
-
-fn join(path: &str, key: &str) -> String {
-    if path.is_empty() {
-        key.to_string()
-    } else {
-        format!("{path}.{key}")
     }
 }
 
@@ -246,24 +239,6 @@ impl<'a> Obj<'a> {
                 format!("{s:?}: expected {expected:?}"),
             ))
         }
-    }
-}
-
-/// Rejects `null` anywhere inside `v` (the format omits absent values instead).
-pub(crate) fn check_no_null(v: &Value, path: &str) -> Result<(), LawError> {
-    match v {
-        Value::Null => Err(LawError::format(
-            path,
-            "null is not allowed (omit absent values)",
-        )),
-        Value::Array(a) => a
-            .iter()
-            .enumerate()
-            .try_for_each(|(i, x)| check_no_null(x, &format!("{path}[{i}]"))),
-        Value::Object(m) => m
-            .iter()
-            .try_for_each(|(k, x)| check_no_null(x, &join(path, k))),
-        _ => Ok(()),
     }
 }
 

@@ -734,7 +734,7 @@ impl ContactLaw {
         if !scene.is_object() {
             return Err(LawError::format("scene", "must be a JSON object"));
         }
-        crate::format::check_no_null(&scene, "scene")?;
+        crate::json::check_no_null(&scene, "scene")?;
         self.meta.scene = scene;
         Ok(())
     }

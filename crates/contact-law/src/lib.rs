@@ -40,6 +40,7 @@
 
 mod error;
 mod format;
+mod json;
 mod law;
 mod meta;
 pub mod steffen;
