@@ -214,9 +214,12 @@ class Record:
         for key, value in data.items():
             name = _attr_name(key)
             object.__setattr__(self, name, _convert(value, hints.get(name)))
-        for name in hints:
-            if name not in self.__dict__:
-                object.__setattr__(self, name, None)
+        absent = tuple(name for name in hints if name not in self.__dict__)
+        for name in absent:
+            object.__setattr__(self, name, None)
+        # declared fields the source left out (the library omits an absent optional key):
+        # None as attributes, left out again by to_dict so that it equals the source
+        object.__setattr__(self, "_absent", absent)
 
     @classmethod
     def _hints(cls) -> Dict[str, Any]:
@@ -243,7 +246,7 @@ class Record:
 
     def keys(self) -> List[str]:
         """The fields this result has."""
-        return list(self.__dict__)
+        return [k for k in self.__dict__ if not k.startswith("_")]
 
     def __getitem__(self, key: str) -> Any:
         try:
@@ -293,7 +296,12 @@ class Record:
                 return {k: plain(x) for k, x in v.items()}
             return _plain(v)
 
-        return {k: plain(v) for k, v in self.__dict__.items()}
+        absent = self.__dict__.get("_absent", ())
+        return {
+            k: plain(v)
+            for k, v in self.__dict__.items()
+            if not k.startswith("_") and not (k in absent and v is None)
+        }
 
     def __repr__(self) -> str:
         parts = []
@@ -500,7 +508,9 @@ class SwitchResult(Record):
             {
                 k: v
                 for k, v in c.__dict__.items()
-                if not isinstance(v, (Table, Record)) and k not in ("hold", "end_of_impact")
+                if not isinstance(v, (Table, Record))
+                and not k.startswith("_")
+                and k not in ("hold", "end_of_impact")
             }
             for c in self.cycles
         ]
