@@ -71,6 +71,21 @@ struct Stats {
     time: Vec<f64>,
     failed: usize,
     over: usize,
+    /// Runs until accommodated: scenes compared, and those whose pull-out ratio differs
+    /// from the reference's by more than the two error estimates (the stopping rule's
+    /// included) allow.
+    stop_compared: usize,
+    stop_uncovered: usize,
+    /// The largest |ratio - reference ratio| / (estimate of the mode + of the reference).
+    stop_worst: f64,
+}
+
+/// The same scene run until accommodated (at most 20 cycles).
+fn until_accommodated(s: &SwitchSpec) -> SwitchSpec {
+    let mut s = s.clone();
+    s.until_accommodated = true;
+    s.cycles = 20;
+    s
 }
 
 pub fn main(args: &[&str]) -> Result<(), String> {
@@ -125,6 +140,35 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                 }
             };
             let sigma = s.roughness.sigma_s;
+            // the stopping rule: the ratio after accommodation against the reference's,
+            // within the sum of the two reported error estimates
+            let stop = until_accommodated(&s);
+            if let (Ok(reference_stop), _) = run(&stop, Accuracy::Reference) {
+                for (k, &mode) in modes.iter().enumerate() {
+                    if let (Ok(r), _) = run(&stop, mode) {
+                        let allowed = r.error_estimate.pull_out_ratio
+                            + reference_stop.error_estimate.pull_out_ratio;
+                        let diff = (r.pull_out_ratio - reference_stop.pull_out_ratio).abs();
+                        let st = &mut stats[k];
+                        st.stop_compared += 1;
+                        if diff > allowed {
+                            st.stop_uncovered += 1;
+                            notes.push(format!(
+                                "{domain:?} {mode} until accommodated: ratio {:.6e} vs reference {:.6e}, difference {diff:.1e} above the estimates {allowed:.1e} ({} vs {} cycles)",
+                                r.pull_out_ratio,
+                                reference_stop.pull_out_ratio,
+                                r.cycles.len(),
+                                reference_stop.cycles.len()
+                            ));
+                        }
+                        if allowed > 0.0 {
+                            st.stop_worst = st.stop_worst.max(diff / allowed);
+                        } else if diff > 0.0 {
+                            st.stop_worst = f64::INFINITY;
+                        }
+                    }
+                }
+            }
             for (k, &mode) in modes.iter().enumerate() {
                 let (r, t) = run(&s, mode);
                 match r {
@@ -164,13 +208,13 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                 Domain::Wide => "The wide ranges a scene accepts",
             },
         );
-        table += "| mode | target d_e / pull-out | d_e error: median / 99 % / max (sigma_s) | pull-out error: median / 99 % / max | over target | failed | time (s) | speed-up over accurate |\n|---|---|---|---|---|---|---|---|\n";
+        table += "| mode | target d_e / pull-out | d_e error: median / 99 % / max (sigma_s) | pull-out error: median / 99 % / max | over target | failed | time (s) | speed-up over accurate | until accommodated: ratio outside the estimates / largest difference over the estimates |\n|---|---|---|---|---|---|---|---|---|\n";
         for (k, &mode) in modes.iter().enumerate() {
             let st = &mut stats[k];
             let t = mode.targets();
             let total: f64 = st.time.iter().sum();
             table += &format!(
-                "| {mode} | {:.0e} / {:.0e} | {:.1e} / {:.1e} / {:.1e} | {:.1e} / {:.1e} / {:.1e} | {} | {} | {:.1} | {:.1}x |\n",
+                "| {mode} | {:.0e} / {:.0e} | {:.1e} / {:.1e} / {:.1e} | {:.1e} / {:.1e} / {:.1e} | {} | {} | {:.1} | {:.1}x | {} of {} / {:.2} |\n",
                 t.d_e_tolerance_sigma,
                 t.pull_out_tolerance,
                 quantile(&mut st.de.clone(), 0.5),
@@ -183,6 +227,9 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                 st.failed,
                 total,
                 accurate_time / total.max(1e-12),
+                st.stop_uncovered,
+                st.stop_compared,
+                st.stop_worst,
             );
         }
     }
