@@ -161,10 +161,17 @@ impl<P: PlasticityLaw, A: AdhesionLaw> ElastoPlasticAsperity<P, A> {
     }
 }
 
-impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P, A> {
-    fn force(&self, delta: f64, history: AsperityHistory, path: Path) -> Result<f64, LawError> {
-        // Loading beyond the history yields again (delta_max = delta); retracting, the
-        // excursion's extreme counts as history.
+impl<P: PlasticityLaw, A: AdhesionLaw> ElastoPlasticAsperity<P, A> {
+    /// The effective sphere the adhesion law sees at `delta` with `history` on `path`, the
+    /// delta_max it was made by and the path on it: loading beyond the history yields again
+    /// (delta_max = delta); retracting, the excursion's extreme counts as history, and the
+    /// excursion starts at its extreme less the residual interference.
+    fn sphere(
+        &self,
+        delta: f64,
+        history: AsperityHistory,
+        path: Path,
+    ) -> (EffectiveSphere, f64, Path) {
         let delta_max = match path {
             Path::Approach => history.delta_max.max(delta),
             Path::Retract { from } => history.delta_max.max(from),
@@ -176,7 +183,14 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
                 from: from - e.state.delta_res,
             },
         };
-        let f = self.adhesion.force(e.radius, e.interference, path)?;
+        (e, delta_max, path)
+    }
+}
+
+impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P, A> {
+    fn force(&self, delta: f64, history: AsperityHistory, path: Path) -> Result<f64, LawError> {
+        let (e, delta_max, sphere_path) = self.sphere(delta, history, path);
+        let f = self.adhesion.force(e.radius, e.interference, sphere_path)?;
         if self.reload == Reload::Bounded && f > 0.0 && delta < delta_max {
             let virgin = self.loading_force(delta)?;
             if virgin > 0.0 && f > virgin {
@@ -195,18 +209,9 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         history: AsperityHistory,
         path: Path,
     ) -> Result<f64, LawError> {
-        let delta_max = match path {
-            Path::Approach => history.delta_max.max(delta),
-            Path::Retract { from } => history.delta_max.max(from),
-        };
-        let e = self.effective(delta, delta_max);
-        let path = match path {
-            Path::Approach => Path::Approach,
-            Path::Retract { from } => Path::Retract {
-                from: from - e.state.delta_res,
-            },
-        };
-        self.adhesion.contact_radius(e.radius, e.interference, path)
+        let (e, _, sphere_path) = self.sphere(delta, history, path);
+        self.adhesion
+            .contact_radius(e.radius, e.interference, sphere_path)
     }
 
     fn delta_cp(&self) -> f64 {

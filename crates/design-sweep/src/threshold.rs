@@ -271,6 +271,24 @@ impl Threshold {
 /// Largest evaluations spent on refining one crossing.
 const MAX_REFINE_EVALUATIONS: usize = 200;
 
+/// The zeroin refinement of one sign change of `f` between `a` and `b` (to `width`), and
+/// why it stopped early if it did: a failed point, or the evaluation cap.
+fn refine(
+    f: impl FnMut(f64) -> Result<f64, String>,
+    a: Sample,
+    b: Sample,
+    width: &dyn Fn(f64) -> f64,
+) -> (contact_core::numeric::Bracket, Option<String>) {
+    match zeroin(f, a, b, width, MAX_REFINE_EVALUATIONS) {
+        Ok(b) => (b, None),
+        Err(ZeroinStop::Failed(m, b)) => (b, Some(m)),
+        Err(ZeroinStop::NoConvergence(b)) => {
+            let m = format!("no convergence after {} evaluations", b.evaluations);
+            (b, Some(m))
+        }
+    }
+}
+
 /// Finds where `pull_out_ratio = 1` as `field` goes from `from` to `to`.
 ///
 /// Scans the range (log-spaced when both ends are > 0 and span a decade or more; the scan
@@ -424,23 +442,8 @@ where
         if ca != cb {
             let closes_side = if ca { FreeSide::Below } else { FreeSide::Above };
             let sa = if ca { 1.0 } else { -1.0 };
-            let (found, detail) = match zeroin(
-                c,
-                Sample { x: ua, f: sa },
-                Sample { x: ub, f: -sa },
-                tol_u,
-                MAX_REFINE_EVALUATIONS,
-            ) {
-                Ok(b) => (b, None),
-                Err(ZeroinStop::Failed(m, b)) => (b, Some(m)),
-                Err(ZeroinStop::NoConvergence(b)) => (
-                    b,
-                    Some(format!(
-                        "no convergence after {} evaluations",
-                        b.evaluations
-                    )),
-                ),
-            };
+            let (found, detail) =
+                refine(c, Sample { x: ua, f: sa }, Sample { x: ub, f: -sa }, &tol_u);
             evaluations += found.evaluations;
             let (x1, x2) = (from_u(found.best.x), from_u(found.other.x));
             let (x1, x2) = (x1.min(x2), x1.max(x2));
@@ -462,23 +465,7 @@ where
         } else {
             FreeSide::Above
         };
-        let (found, detail) = match zeroin(
-            g,
-            Sample { x: ua, f: ga },
-            Sample { x: ub, f: gb },
-            tol_u,
-            MAX_REFINE_EVALUATIONS,
-        ) {
-            Ok(b) => (b, None),
-            Err(ZeroinStop::Failed(m, b)) => (b, Some(m)),
-            Err(ZeroinStop::NoConvergence(b)) => (
-                b,
-                Some(format!(
-                    "no convergence after {} evaluations",
-                    b.evaluations
-                )),
-            ),
-        };
+        let (found, detail) = refine(g, Sample { x: ua, f: ga }, Sample { x: ub, f: gb }, &tol_u);
         evaluations += found.evaluations;
         let (near, far) = (found.best, found.other);
         let (u1, g1, u2, g2) = if near.x <= far.x {
@@ -657,23 +644,12 @@ where
         } else {
             FreeSide::Above
         };
-        let (b, detail) = match zeroin(
+        let (b, detail) = refine(
             margin,
             Sample { x: ua, f: ma },
             Sample { x: ub, f: mb },
-            tol_u,
-            MAX_REFINE_EVALUATIONS,
-        ) {
-            Ok(b) => (b, None),
-            Err(ZeroinStop::Failed(m, b)) => (b, Some(m)),
-            Err(ZeroinStop::NoConvergence(b)) => (
-                b,
-                Some(format!(
-                    "no convergence after {} evaluations",
-                    b.evaluations
-                )),
-            ),
-        };
+            &tol_u,
+        );
         *evaluations += b.evaluations;
         let (p, q) = if b.best.x <= b.other.x {
             (b.best, b.other)
