@@ -575,3 +575,305 @@ fn merge_refuses_shards_of_different_scenes_or_grids() {
         "nothing is written when merge refuses"
     );
 }
+
+// ------------------------------------------------------------ categorical axes
+
+/// Every point of `design map` on `vary` (one point object per index) and its CSV rows.
+fn map_points(dir: &Path, scene: &str, vary: &[&str], more: &[&str]) -> (Vec<Value>, Vec<String>) {
+    let mut args = vec!["design", "map", "--scene", scene];
+    for v in vary {
+        args.extend(["--vary", v]);
+    }
+    let out = dir.display().to_string();
+    args.extend(["--out", &out]);
+    args.extend_from_slice(more);
+    ok(&stiction(&args));
+    let v = read_json(&dir.join("map.json"));
+    assert!(!has_null(&v));
+    let csv = std::fs::read_to_string(dir.join("map.csv")).unwrap();
+    (
+        v["points"].as_array().unwrap().clone(),
+        csv.lines().map(str::to_string).collect(),
+    )
+}
+
+/// A point object without its `index` and `values`: what the point computed.
+fn computed(p: &Value) -> Value {
+    let mut p = p.clone();
+    let o = p.as_object_mut().unwrap();
+    o.remove("index");
+    o.remove("values");
+    p
+}
+
+#[test]
+fn a_law_by_stiffness_map_equals_the_single_law_maps_bit_for_bit() {
+    let s = file("design-laws", &spring_scene(3, &[]));
+    let dir = temp_dir("design-laws");
+    let ks = "switch.k_s=5e9:4e10:log:3";
+    let laws = ["etsion_kadin", "kogut_etsion"];
+    let (both, both_csv) = map_points(
+        &dir.join("both"),
+        &s,
+        &["contact.plasticity_law=etsion_kadin,kogut_etsion", ks],
+        &[],
+    );
+    assert_eq!(both.len(), 6);
+    assert!(both_csv[0].starts_with("contact.plasticity_law,switch.k_s,pull_out_ratio,"));
+    for (w, law) in laws.iter().enumerate() {
+        let set = format!("contact.plasticity_law={law}");
+        let (single, single_csv) = map_points(&dir.join(law), &s, &[ks], &["--set", &set]);
+        assert_eq!(single.len(), 3);
+        for (j, p) in single.iter().enumerate() {
+            let q = &both[3 * w + j];
+            // the word at every point, the number as the single map has it
+            assert_eq!(q["values"]["contact.plasticity_law"], *law, "{q}");
+            assert_eq!(q["values"]["switch.k_s"], p["values"]["switch.k_s"]);
+            // the same computation: every number the same, bit for bit
+            assert_eq!(computed(q), computed(p), "{law} point {j}");
+            assert_eq!(
+                q["pull_out_ratio"].as_f64().map(f64::to_bits),
+                p["pull_out_ratio"].as_f64().map(f64::to_bits)
+            );
+            // and the CSV row is the single map's row behind the word
+            assert_eq!(
+                both_csv[1 + 3 * w + j],
+                format!("{law},{}", single_csv[1 + j])
+            );
+        }
+    }
+    // the laws differ where it matters (docs/validation.md 5b): at K_s = 1.41e10 the
+    // paper's law is free after accommodation and Kogut-Etsion's still sticks
+    let ratio = |i: usize| both[i]["pull_out_ratio"].as_f64().unwrap();
+    for j in 0..3 {
+        assert!(ratio(3 + j) > ratio(j), "Kogut-Etsion pulls out harder");
+    }
+    assert!(
+        ratio(1) < 1.0 && ratio(4) > 1.0,
+        "{} {}",
+        ratio(1),
+        ratio(4)
+    );
+    // the table gives each law its boundary along K_s
+    let t = ok(&stiction(&[
+        "design",
+        "map",
+        "--scene",
+        &s,
+        "--vary",
+        "contact.plasticity_law=etsion_kadin,kogut_etsion",
+        "--vary",
+        ks,
+        "--out",
+        dir.join("again").to_str().unwrap(),
+    ]));
+    assert!(
+        t.contains("contact.plasticity_law = etsion_kadin: switch.k_s ~ ")
+            && t.contains("contact.plasticity_law = kogut_etsion: switch.k_s ~ "),
+        "{t}"
+    );
+    let svg = std::fs::read_to_string(dir.join("both/map.svg")).unwrap();
+    assert!(svg.contains("contact.plasticity_law = kogut_etsion"));
+}
+
+#[test]
+fn choice_keys_vary_like_the_scene_would_set_them() {
+    // every point equals a direct run of the scene with the word set
+    let scene = spring_scene(2, &[]);
+    let s = file("design-choices", &scene);
+    let dir = temp_dir("design-choices");
+    for (key, line_key, words) in [
+        (
+            "contact.yield_modulus",
+            "yield_modulus",
+            ["as_printed", "composite"],
+        ),
+        ("contact.reload", "reload", ["as_printed", "bounded"]),
+        (
+            "contact.adhesion_law",
+            "adhesion_law",
+            ["maugis_kim", "dmt"],
+        ),
+    ] {
+        let vary = format!("{key}={}", words.join(","));
+        let (points, _) = map_points(&dir.join(line_key), &s, &[&vary], &[]);
+        for (p, w) in points.iter().zip(words) {
+            assert_eq!(p["values"][key], w);
+            let r = direct(
+                "design-choice-direct",
+                &scene,
+                &[(line_key, format!("{line_key} = \"{w}\""))],
+            );
+            assert_eq!(
+                p["pull_out_ratio"].as_f64().map(f64::to_bits),
+                r["pull_out_ratio"].as_f64().map(f64::to_bits),
+                "{key} = {w}"
+            );
+        }
+    }
+    // eq 1 as printed puts the ratio far above the composite reading (about 100x)
+    let (points, _) = map_points(
+        &dir.join("yield_modulus"),
+        &s,
+        &["contact.yield_modulus=as_printed,composite"],
+        &[],
+    );
+    let r: Vec<f64> = points
+        .iter()
+        .map(|p| p["pull_out_ratio"].as_f64().unwrap())
+        .collect();
+    assert!(r[0] > 50.0 * r[1], "{r:?}");
+}
+
+#[test]
+fn words_a_key_does_not_take_are_refused_before_any_point_runs() {
+    let s = file("design-words-bad", &spring_scene(1, &[]));
+    let dir = temp_dir("design-words-bad");
+    let out_dir = dir.join("m");
+    let map = |vary: &str| {
+        stiction(&[
+            "design",
+            "map",
+            "--scene",
+            &s,
+            "--vary",
+            vary,
+            "--vary",
+            "switch.k_s=5e9:2e10:log:2",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ])
+    };
+    // an unknown law: the option, the word and the laws there are
+    let bad = "contact.plasticity_law=etsion_kadin,kogut_etsoin";
+    fails(
+        &map(bad),
+        2,
+        &[
+            "--vary",
+            bad,
+            "`kogut_etsoin` is not a registered plasticity law",
+            "etsion_kadin, kogut_etsion, elastic",
+        ],
+    );
+    fails(
+        &map("contact.adhesion_law=maugis_kim,bradley"),
+        2,
+        &["`bradley`", "adhesion law", "maugis_kim, jkr, dmt, hertz"],
+    );
+    fails(
+        &map("contact.reload=bounded,loose"),
+        2,
+        &[
+            "`loose` is not a choice of contact.reload",
+            "as_printed, bounded",
+        ],
+    );
+    // a numeric key takes numbers, a law takes words
+    fails(
+        &map("surface.sigma_s=rough,smooth"),
+        2,
+        &[
+            "surface.sigma_s takes numbers",
+            "surface.sigma_s=FROM:TO:lin|log:N",
+        ],
+    );
+    fails(
+        &map("contact.plasticity_law=1:2:lin:2"),
+        2,
+        &["contact.plasticity_law", "takes words", "WORD,WORD"],
+    );
+    // a list of numbers is not a list of words
+    fails(
+        &map("surface.sigma_s=5e-9,8e-9"),
+        2,
+        &["`5e-9` is a number"],
+    );
+    // an unknown field lists the fields that take words
+    fails(
+        &map("contact.law=etsion_kadin"),
+        2,
+        &[
+            "unknown field `contact.law`",
+            "contact.plasticity_law",
+            "contact.reload",
+        ],
+    );
+    // twice the same word
+    fails(
+        &map("contact.reload=bounded,bounded"),
+        2,
+        &["`bounded` is listed twice"],
+    );
+    assert!(!out_dir.exists(), "nothing is written on bad input");
+}
+
+#[test]
+fn law_map_shards_merge_and_parts_with_other_words_are_refused() {
+    let s = file("design-law-shards", &spring_scene(1, &[]));
+    let dir = temp_dir("design-law-shards");
+    let d = |name: &str| dir.join(name).display().to_string();
+    let laws = "contact.plasticity_law=etsion_kadin,kogut_etsion";
+    let run = |laws: &str, shard: Option<&str>, out: &str| {
+        let mut args = vec![
+            "design",
+            "map",
+            "--scene",
+            &s,
+            "--vary",
+            "switch.k_s=5e9:2e10:log:2",
+            "--vary",
+            laws,
+            "--out",
+            out,
+        ];
+        if let Some(k) = shard {
+            args.extend(["--shard", k]);
+        }
+        ok(&stiction(&args))
+    };
+    run(laws, None, &d("whole"));
+    run(laws, Some("1/2"), &d("p1"));
+    run(laws, Some("2/2"), &d("p2"));
+    run(
+        "contact.plasticity_law=etsion_kadin,elastic",
+        Some("2/2"),
+        &d("p2-elastic"),
+    );
+    run(
+        "contact.plasticity_law=kogut_etsion,etsion_kadin",
+        Some("2/2"),
+        &d("p2-swapped"),
+    );
+    ok(&stiction(&[
+        "design",
+        "merge",
+        &d("p2"),
+        &d("p1"),
+        "--out",
+        &d("merged"),
+    ]));
+    for f in ["map.csv", "map.json", "map.svg"] {
+        assert!(
+            std::fs::read(dir.join("whole").join(f)).unwrap()
+                == std::fs::read(dir.join("merged").join(f)).unwrap(),
+            "{f} of the merged shards differs from the whole run"
+        );
+    }
+    for other in ["p2-elastic", "p2-swapped"] {
+        let out = stiction(&["design", "merge", &d("p1"), &d(other), "--out", &d("m")]);
+        fails(
+            &out,
+            2,
+            &[
+                other,
+                "the words of contact.plasticity_law",
+                "etsion_kadin, kogut_etsion",
+            ],
+        );
+    }
+    assert!(
+        !dir.join("m").exists(),
+        "nothing is written when merge refuses"
+    );
+}

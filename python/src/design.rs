@@ -14,7 +14,8 @@ use std::collections::HashMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 use stiction_model::design::{
-    self, design_point as reduce, map_labels, DesignPoint, Evaluator, Map, MapResult, PointError,
+    self, design_point as reduce, map_labels, DesignPoint, Evaluator, Grid, Level, Map, MapResult,
+    PointError,
 };
 use stiction_model::design_sweep;
 use stiction_model::guards::{code, Validity, Warning};
@@ -151,9 +152,38 @@ pub fn design_map(
     Ok(PyMap::of(r))
 }
 
+/// A field value of a design point as Python gives and takes it: a float, or the word of
+/// a categorical axis (a law name, a choice).
+#[derive(Debug, Clone, FromPyObject, IntoPyObject)]
+pub enum FieldValue {
+    /// A number (SI).
+    Number(f64),
+    /// A word.
+    Word(String),
+}
+
+impl FieldValue {
+    fn level(&self) -> Level<'_> {
+        match self {
+            FieldValue::Number(x) => Level::Number(*x),
+            FieldValue::Word(w) => Level::Word(w),
+        }
+    }
+}
+
+impl From<Level<'_>> for FieldValue {
+    fn from(l: Level<'_>) -> Self {
+        match l {
+            Level::Number(x) => FieldValue::Number(x),
+            Level::Word(w) => FieldValue::Word(w.to_owned()),
+        }
+    }
+}
+
 /// The plan of a map for a cluster: the base scene of every point (the design settings
-/// applied) as TOML text, and the points to run, `(index, [(field, value), ...])`, checked
-/// as `stiction design map` checks them before any point runs.
+/// applied) as TOML text, and the points to run, `(index, [(field, value), ...])` (a value
+/// a float, or a word on a categorical axis), checked as `stiction design map` checks them
+/// before any point runs.
 #[pyfunction]
 #[pyo3(signature = (scene, vary, accuracy = None, shard = None, require = None))]
 #[allow(clippy::type_complexity)]
@@ -164,7 +194,7 @@ pub fn design_map_plan(
     accuracy: Option<&str>,
     shard: Option<&str>,
     require: Option<String>,
-) -> PyResult<(String, Vec<(usize, Vec<(String, f64)>)>)> {
+) -> PyResult<(String, Vec<(usize, Vec<(String, FieldValue)>)>)> {
     let scene = scene_from_py(scene)?;
     let acc = accuracy_arg(accuracy)?;
     let shard = shard.map(str::to_string);
@@ -198,7 +228,7 @@ pub fn design_map_plan(
                 .axes()
                 .iter()
                 .map(|a| a.field.clone())
-                .zip(grid.values(i))
+                .zip(grid.levels(i).into_iter().map(FieldValue::from))
                 .collect();
             (i, values)
         })
@@ -224,16 +254,24 @@ type AnswerIn<'py> = (
 );
 
 /// One design point, as a worker evaluates it: `base` the plan's TOML text, `values` the
-/// point's fields and values. The library's evaluator (`Evaluator::result` reduced by
-/// `design_point`), with the GIL released; a panic is answered as the map would record it.
+/// point's fields and values (floats, or words). The library's evaluator
+/// (`Evaluator::result_at` reduced by `design_point`), with the GIL released; a panic is
+/// answered as the map would record it.
 #[pyfunction]
-pub fn design_point(py: Python<'_>, base: &str, values: Vec<(String, f64)>) -> PyResult<Answer> {
+pub fn design_point(
+    py: Python<'_>,
+    base: &str,
+    values: Vec<(String, FieldValue)>,
+) -> PyResult<Answer> {
     let scene = Scene::from_toml_str(design::POINT, base).or_raise()?;
     let answer = crate::pool::detach(py, move || {
-        let args: Vec<(&str, f64)> = values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        let args: Vec<(&str, Level<'_>)> = values
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.level()))
+            .collect();
         let registry = registry();
         let ev = Evaluator::new(scene, &registry);
-        match catch_unwind(AssertUnwindSafe(|| ev.result(&args))) {
+        match catch_unwind(AssertUnwindSafe(|| ev.result_at(&args))) {
             Ok(Ok(r)) => Ok((reduce(&r), r.warnings)),
             Ok(Err(e)) => Err(e),
             Err(payload) => {
@@ -277,8 +315,21 @@ fn static_code(c: &str) -> &'static str {
     }
 }
 
-fn bits(values: &[f64]) -> Vec<u64> {
-    values.iter().map(|v| v.to_bits()).collect()
+/// The key of a grid point by its values: each number's bits, a word's position on its
+/// axis.
+fn key(grid: &Grid, levels: &[Level<'_>]) -> Vec<u64> {
+    levels
+        .iter()
+        .zip(grid.axes())
+        .map(|(l, a)| match l {
+            Level::Number(x) => x.to_bits(),
+            Level::Word(w) => a
+                .words
+                .iter()
+                .position(|x| x == w)
+                .map_or(u64::MAX, |k| k as u64),
+        })
+        .collect()
 }
 
 /// Assembles the workers' answers (`(index, answer)` per point of the plan) into the map:
@@ -300,7 +351,7 @@ pub fn design_map_assemble(
     let acc = accuracy_arg(accuracy)?;
     let (base, request, require) =
         design::map_request_with(&scene, &registry(), &vary, shard, acc, require).or_raise()?;
-    // the answers as Rust values, by the bits of the point's grid values
+    // the answers as Rust values, by the point's grid values
     type Got = (Result<DesignPoint, PointError>, Vec<Warning>);
     let mut got: HashMap<Vec<u64>, Got> = HashMap::new();
     for item in answers.iter() {
@@ -335,16 +386,16 @@ pub fn design_map_assemble(
                 breaks_validity: b,
             })
             .collect();
-        got.insert(bits(&request.grid.values(index)), (result, w));
+        got.insert(key(&request.grid, &request.grid.levels(index)), (result, w));
     }
     let registry = registry();
     let ev = Evaluator::new(base, &registry);
     let grid = request.grid.clone();
     let map = design_sweep::run_map(
         request,
-        |args: &[(&str, f64)]| -> Result<DesignPoint, PointError> {
-            let values: Vec<f64> = args.iter().map(|(_, v)| *v).collect();
-            match got.get(&bits(&values)) {
+        |args: &[(&str, Level<'_>)]| -> Result<DesignPoint, PointError> {
+            let levels: Vec<Level<'_>> = args.iter().map(|(_, v)| *v).collect();
+            match got.get(&key(&grid, &levels)) {
                 Some((r, _)) => r.clone(),
                 None => Err(PointError::Failed(
                     "no answer came back for this point".into(),
@@ -356,14 +407,15 @@ pub fn design_map_assemble(
     .with_requirement(require);
     // the guards in index order (deterministic)
     for p in map.points() {
-        if let Some((_, w)) = got.get(&bits(&p.values)) {
-            let args: Vec<(&str, f64)> = grid
+        let levels = grid.levels(p.index);
+        if let Some((_, w)) = got.get(&key(&grid, &levels)) {
+            let args: Vec<(&str, Level<'_>)> = grid
                 .axes()
                 .iter()
                 .map(|a| a.field.as_str())
-                .zip(p.values.iter().copied())
+                .zip(levels.iter().copied())
                 .collect();
-            ev.record(&args, w);
+            ev.record_at(&args, w);
         }
     }
     let warnings = ev.warnings(map.points().len());

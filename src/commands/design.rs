@@ -38,8 +38,9 @@ pub enum DesignAction {
     /// The critical value of one scene field at which the pull-out ratio (largest pull-out
     /// after accommodation / K_s d0) crosses 1: a scan of the range, then a bracketed root.
     Threshold(ThresholdCommand),
-    /// A 1-D or 2-D map of the pull-out ratio over one or two scene fields, written as
-    /// map.csv, map.json and map.svg (points in parallel; --shard for a cluster array).
+    /// A 1-D or 2-D map of the pull-out ratio over one or two scene fields (numbers, or
+    /// words: law names and choices), written as map.csv, map.json and map.svg (points in
+    /// parallel; --shard for a cluster array).
     Map(MapCommand),
     /// The probability that a switch sticks (by cycle, after accommodation) and that it
     /// does not close when design fields scatter (FIELD=DIST): Monte Carlo with exact
@@ -191,10 +192,15 @@ pub struct MapCommand {
     /// The switch scene, `--set`, `--strict`.
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// A varied field and its values, FIELD=FROM:TO:lin|log:N (FROM, TO in the field's SI
-    /// unit; N values, both ends included). Once for a 1-D map, twice for 2-D (the first
-    /// varies slowest).
-    #[arg(long, value_name = "FIELD=FROM:TO:lin|log:N", required = true)]
+    /// A varied field and its values: FIELD=FROM:TO:lin|log:N for a number (FROM, TO in the
+    /// field's SI unit; N values, both ends included), or FIELD=WORD,WORD,... for a law name
+    /// or a choice (contact.plasticity_law=etsion_kadin,kogut_etsion; no colon: the words
+    /// in the order given). Once for a 1-D map, twice for 2-D (the first varies slowest).
+    #[arg(
+        long,
+        value_name = "FIELD=FROM:TO:lin|log:N|FIELD=WORD,...",
+        required = true
+    )]
     pub vary: Vec<String>,
     /// Write map.csv, map.json and map.svg to this folder (replaced as a whole; it may
     /// hold only those files).

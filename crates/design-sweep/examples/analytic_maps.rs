@@ -2,7 +2,7 @@
 //! `cargo run -p design-sweep --example analytic_maps -- OUT_DIR`.
 
 use design_sweep::{
-    map_table, run_map, threshold, threshold_table, DesignPoint, Grid, Labels, MapRequest,
+    map_table, run_map, threshold, threshold_table, DesignPoint, Grid, Labels, Level, MapRequest,
     PointError, ThresholdOptions,
 };
 use std::path::PathBuf;
@@ -24,9 +24,10 @@ fn point(ratio: f64, restoring: f64, closes: bool) -> DesignPoint {
 }
 
 /// ratio = (2e3/k)^2 (sigma/1e-8); does not close above k = 2e4; fails in one spot.
-fn eval(values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
-    let k = values[0].1;
-    let sigma = values.get(1).map_or(5e-9, |v| v.1);
+fn eval(values: &[(&str, Level)]) -> Result<DesignPoint, PointError> {
+    let number = |v: &(&str, Level)| v.1.number().ok_or("a numeric axis");
+    let k = number(&values[0])?;
+    let sigma = values.get(1).map_or(Ok(5e-9), number)?;
     if (k - 1e3).abs() < 1.0 && sigma < 2e-9 {
         return Err(PointError::Failed("stand-in failure".into()));
     }
@@ -71,7 +72,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "switch.k_s",
         1e2,
         1e5,
-        |k| eval(&[("switch.k_s", k)]),
+        |k| eval(&[("switch.k_s", Level::Number(k))]),
         &ThresholdOptions::default(),
     )?;
     println!("{}", threshold_table(&t, &labels));

@@ -1,6 +1,8 @@
 //! The stiction boundary (pull-out ratio = 1) of a map: crossing points of a 1-D map, the
-//! contour of a 2-D map (marching squares on log10 ratio).
+//! contour of a 2-D map (marching squares on log10 ratio), and the crossings along the
+//! numeric axis for each word of a map over a categorical and a numeric axis.
 
+use crate::grid::Axis;
 use crate::map::Map;
 use crate::threshold::{CrossingKind, FreeSide};
 use serde::Serialize;
@@ -36,52 +38,109 @@ fn crossing_fraction(la: f64, lb: f64) -> f64 {
     }
 }
 
+/// The crossings of a word of a categorical axis: where the ratio crosses 1 along the
+/// numeric axis of a map over a categorical and a numeric axis, with that word fixed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WordBoundary {
+    /// The categorical field.
+    pub field: String,
+    /// Its word.
+    pub word: String,
+    /// The crossings along the numeric axis, ascending value.
+    pub crossings: Vec<BoundaryPoint>,
+}
+
 impl Map {
-    /// The crossings of ratio = 1 of a 1-D map, ascending value (empty for a 2-D map).
-    /// Failed points are skipped: a crossing may then span them.
+    /// The crossings of ratio = 1 of a 1-D numeric map, ascending value (empty for a 2-D
+    /// map, and for a categorical axis: its words have no order to cross along). Failed
+    /// points are skipped: a crossing may then span them.
     pub fn boundary_1d(&self) -> Vec<BoundaryPoint> {
-        if self.grid().dim() != 1 {
+        if self.grid().dim() != 1 || self.grid().has_categorical() {
             return Vec::new();
         }
         let axis = &self.grid().axes()[0];
-        let known: Vec<(f64, f64)> = (0..axis.n)
-            .filter_map(|i| level(self, i).map(|l| (axis.values[i], l)))
-            .collect();
-        let mut out: Vec<BoundaryPoint> = known
-            .windows(2)
-            .filter(|w| (w[0].1 < 0.0) != (w[1].1 < 0.0))
-            .map(|w| {
-                let ((xa, la), (xb, lb)) = (w[0], w[1]);
-                let (ta, tb) = (axis.plotted(xa), axis.plotted(xb));
-                let t = ta + crossing_fraction(la, lb) * (tb - ta);
-                let lower_free = if xa < xb { la < 0.0 } else { lb < 0.0 };
-                BoundaryPoint {
-                    value: axis.unplotted(t),
-                    free_side: if lower_free {
-                        FreeSide::Below
-                    } else {
-                        FreeSide::Above
-                    },
-                    between: [xa.min(xb), xa.max(xb)],
-                    kind: if la.is_finite() && lb.is_finite() {
-                        CrossingKind::Continuous
-                    } else {
-                        CrossingKind::Jump
-                    },
-                }
-            })
-            .collect();
-        out.sort_by(|a, b| a.value.total_cmp(&b.value));
-        out
+        crossings(
+            axis,
+            (0..axis.n).filter_map(|i| level(self, i).map(|l| (axis.values[i], l))),
+        )
     }
 
+    /// For a 2-D map over one categorical and one numeric axis, the crossings of ratio = 1
+    /// along the numeric axis for each word, in the order of the words (the boundary of
+    /// each law, say); empty for any other map. Computed as [`Map::boundary_1d`] on the
+    /// points of each word.
+    pub fn boundary_by_word(&self) -> Vec<WordBoundary> {
+        let g = self.grid();
+        if g.dim() != 2 {
+            return Vec::new();
+        }
+        let (c, x) = match (g.axes()[0].is_categorical(), g.axes()[1].is_categorical()) {
+            (true, false) => (0, 1),
+            (false, true) => (1, 0),
+            _ => return Vec::new(),
+        };
+        let (cat, num) = (&g.axes()[c], &g.axes()[x]);
+        cat.words
+            .iter()
+            .enumerate()
+            .map(|(w, word)| {
+                let known = (0..num.n).filter_map(|j| {
+                    let mut idx = [0; 2];
+                    idx[c] = w;
+                    idx[x] = j;
+                    level(self, g.index(&idx)).map(|l| (num.values[j], l))
+                });
+                WordBoundary {
+                    field: cat.field.clone(),
+                    word: word.clone(),
+                    crossings: crossings(num, known),
+                }
+            })
+            .collect()
+    }
+}
+
+/// The crossings of ratio = 1 between neighbouring `(value, log10 ratio)` of a numeric
+/// axis, ascending value.
+fn crossings(axis: &Axis, known: impl Iterator<Item = (f64, f64)>) -> Vec<BoundaryPoint> {
+    let known: Vec<(f64, f64)> = known.collect();
+    let mut out: Vec<BoundaryPoint> = known
+        .windows(2)
+        .filter(|w| (w[0].1 < 0.0) != (w[1].1 < 0.0))
+        .map(|w| {
+            let ((xa, la), (xb, lb)) = (w[0], w[1]);
+            let (ta, tb) = (axis.plotted(xa), axis.plotted(xb));
+            let t = ta + crossing_fraction(la, lb) * (tb - ta);
+            let lower_free = if xa < xb { la < 0.0 } else { lb < 0.0 };
+            BoundaryPoint {
+                value: axis.unplotted(t),
+                free_side: if lower_free {
+                    FreeSide::Below
+                } else {
+                    FreeSide::Above
+                },
+                between: [xa.min(xb), xa.max(xb)],
+                kind: if la.is_finite() && lb.is_finite() {
+                    CrossingKind::Continuous
+                } else {
+                    CrossingKind::Jump
+                },
+            }
+        })
+        .collect();
+    out.sort_by(|a, b| a.value.total_cmp(&b.value));
+    out
+}
+
+impl Map {
     /// The contour ratio = 1 of a 2-D map as polylines of (first field, second field)
-    /// values (empty for a 1-D map). Computed by marching squares on log10 ratio with
+    /// values (empty for a 1-D map, and for a categorical axis: see
+    /// [`Map::boundary_by_word`]). Computed by marching squares on log10 ratio with
     /// linear interpolation along cell edges in the plotted coordinates; cells with a
     /// failed or absent corner are skipped; next to a point that does not close the
     /// crossing is put at the edge midpoint.
     pub fn boundary_2d(&self) -> Vec<Vec<(f64, f64)>> {
-        if self.grid().dim() != 2 {
+        if self.grid().dim() != 2 || self.grid().has_categorical() {
             return Vec::new();
         }
         let [ax, ay] = [&self.grid().axes()[0], &self.grid().axes()[1]];
@@ -96,9 +155,13 @@ impl Map {
     }
 }
 
-/// Marching squares in plotted coordinates (log10 for log axes).
+/// Marching squares in plotted coordinates (log10 for log axes); none over a categorical
+/// axis (neighbouring words are not neighbouring values).
 pub(crate) fn contour_plotted(map: &Map) -> Vec<Vec<(f64, f64)>> {
     let g = map.grid();
+    if g.dim() != 2 || g.has_categorical() {
+        return Vec::new();
+    }
     let [ax, ay] = [&g.axes()[0], &g.axes()[1]];
     let (nx, ny) = (ax.n, ay.n);
     let node = |i: usize, j: usize| g.index(&[i, j]);

@@ -4,7 +4,8 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
 pub enum DesignError {
-    /// A `--vary FIELD=FROM:TO:lin|log:N` option that does not parse or validate.
+    /// A `--vary FIELD=FROM:TO:lin|log:N` (or `FIELD=WORD,WORD,...`) option that does not
+    /// parse or validate.
     #[error("invalid varied field `{option}`: {reason}")]
     Axis {
         /// The option text as given.

@@ -1,4 +1,5 @@
-//! Grid axes `FIELD=FROM:TO:lin|log:N` and the 1-D or 2-D grid of a map.
+//! Grid axes, numeric `FIELD=FROM:TO:lin|log:N` or categorical `FIELD=WORD,WORD,...`, and
+//! the 1-D or 2-D grid of a map.
 
 use crate::point::check_field;
 use crate::DesignError;
@@ -30,21 +31,78 @@ impl fmt::Display for Spacing {
     }
 }
 
-/// One varied field: `n` values from `from` to `to` (both included when `n >= 2`).
+/// The value of one varied field at a grid point: a number (a numeric axis) or a word (a
+/// categorical axis: a law name, a choice). What an evaluator receives per axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Level<'a> {
+    /// A number, in the field's SI unit.
+    Number(f64),
+    /// A word of a categorical axis.
+    Word(&'a str),
+}
+
+impl<'a> Level<'a> {
+    /// The number, if the level is one.
+    pub fn number(self) -> Option<f64> {
+        match self {
+            Level::Number(x) => Some(x),
+            Level::Word(_) => None,
+        }
+    }
+
+    /// The word, if the level is one.
+    pub fn word(self) -> Option<&'a str> {
+        match self {
+            Level::Number(_) => None,
+            Level::Word(w) => Some(w),
+        }
+    }
+}
+
+impl fmt::Display for Level<'_> {
+    /// A number in the shortest form that reads back exactly (`1.5e-9`), a word as it is.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Level::Number(x) => write!(f, "{x:e}"),
+            Level::Word(w) => f.write_str(w),
+        }
+    }
+}
+
+impl Serialize for Level<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Level::Number(x) => s.serialize_f64(*x),
+            Level::Word(w) => s.serialize_str(w),
+        }
+    }
+}
+
+/// One varied field: `n` values from `from` to `to` (both included when `n >= 2`), or, for
+/// a **categorical** axis (`FIELD=WORD,WORD,...`: a law name or a choice of the scene), the
+/// `n` words of `words` in the order given.
+///
+/// A categorical axis is laid out like a factor's codes: its `values` are the positions of
+/// its words, `0, 1, ..., n-1` (`from` 0, `to` n-1, `spacing` lin), which is what orders the
+/// grid and places the words on a plot; the words are what the evaluator receives
+/// ([`Grid::levels`]) and what `map.json` and `map.csv` carry.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "AxisIn", into = "AxisOut")]
 pub struct Axis {
     /// The scene key, `section.key`.
     pub field: String,
-    /// First value.
+    /// First value (0 on a categorical axis).
     pub from: f64,
-    /// Last value (not used when `n = 1`).
+    /// Last value (not used when `n = 1`; n-1 on a categorical axis).
     pub to: f64,
-    /// Spacing of the values.
+    /// Spacing of the values (lin on a categorical axis).
     pub spacing: Spacing,
     /// Number of values.
     pub n: usize,
-    /// The values, from `from` to `to`.
+    /// The values, from `from` to `to` (on a categorical axis the codes 0, 1, ..., n-1).
     pub values: Vec<f64>,
+    /// The words of a categorical axis, in order; empty for a numeric axis.
+    pub words: Vec<String>,
 }
 
 impl Axis {
@@ -63,15 +121,33 @@ impl Axis {
         Self::checked(&option, field, from, to, spacing, n)
     }
 
-    /// Parses `FIELD=FROM:TO:lin|log:N`, e.g. `switch.k_s=1e2:1e5:log:31`.
+    /// A validated categorical axis over `words` (at least one; each ASCII letters, digits
+    /// and `_`, not a number, none twice), in the order given. Which words the field
+    /// accepts is the caller's to check (the scene's keys know their laws and choices).
+    pub fn categorical<S: AsRef<str>>(field: &str, words: &[S]) -> Result<Axis, DesignError> {
+        let words: Vec<&str> = words.iter().map(AsRef::as_ref).collect();
+        let option = format!("{field}={}", words.join(","));
+        Self::checked_words(&option, field, &words)
+    }
+
+    /// Parses an axis option: `FIELD=FROM:TO:lin|log:N` (numeric, e.g.
+    /// `switch.k_s=1e2:1e5:log:31`) or `FIELD=WORD,WORD,...` (categorical, e.g.
+    /// `contact.plasticity_law=etsion_kadin,kogut_etsion`). The colons decide: text after
+    /// `=` with a `:` is the numeric form, text without one a list of words. A list whose
+    /// words are numbers (`switch.k_s=1e9,2e9`) is refused: numbers are varied as
+    /// FROM:TO:lin|log:N.
     pub fn parse(option: &str) -> Result<Axis, DesignError> {
         let err = |reason: String| DesignError::Axis {
             option: option.to_owned(),
             reason,
         };
-        let (field, rest) = option
-            .split_once('=')
-            .ok_or_else(|| err("expected FIELD=FROM:TO:lin|log:N".into()))?;
+        let (field, rest) = option.split_once('=').ok_or_else(|| {
+            err("expected FIELD=FROM:TO:lin|log:N (numbers) or FIELD=WORD,WORD,... (words)".into())
+        })?;
+        if !rest.contains(':') {
+            let words: Vec<&str> = rest.split(',').map(str::trim).collect();
+            return Self::checked_words(option, field.trim(), &words);
+        }
         let parts: Vec<&str> = rest.split(':').collect();
         if parts.len() != 4 {
             return Err(err(format!(
@@ -137,7 +213,80 @@ impl Axis {
             spacing,
             n,
             values: spaced(from, to, spacing, n),
+            words: Vec::new(),
         })
+    }
+
+    fn checked_words(option: &str, field: &str, words: &[&str]) -> Result<Axis, DesignError> {
+        let err = |reason: String| DesignError::Axis {
+            option: option.to_owned(),
+            reason,
+        };
+        check_field(field).map_err(err)?;
+        if words.len() > MAX_AXIS_POINTS {
+            return Err(err(format!(
+                "{} words: at most {MAX_AXIS_POINTS}",
+                words.len()
+            )));
+        }
+        for (i, w) in words.iter().enumerate() {
+            if w.is_empty() {
+                return Err(err(format!(
+                    "word {} of WORD,WORD,... is empty (a numeric axis is FIELD=FROM:TO:lin|log:N)",
+                    i + 1
+                )));
+            }
+            if w.parse::<f64>().is_ok() {
+                return Err(err(format!(
+                    "`{w}` is a number: FIELD=WORD,WORD,... lists words (law names, choices); \
+                     numbers are varied as FIELD=FROM:TO:lin|log:N"
+                )));
+            }
+            if !w.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+                return Err(err(format!(
+                    "word `{w}` must be ASCII letters, digits and _ (a law name or a choice)"
+                )));
+            }
+            if words[..i].contains(w) {
+                return Err(err(format!("word `{w}` is listed twice")));
+            }
+        }
+        let n = words.len();
+        Ok(Axis {
+            field: field.to_owned(),
+            from: 0.0,
+            to: n.saturating_sub(1) as f64,
+            spacing: Spacing::Lin,
+            n,
+            values: (0..n).map(|i| i as f64).collect(),
+            words: words.iter().map(|w| (*w).to_owned()).collect(),
+        })
+    }
+
+    /// Whether the axis lists words (`FIELD=WORD,WORD,...`) rather than numbers.
+    pub fn is_categorical(&self) -> bool {
+        !self.words.is_empty()
+    }
+
+    /// The value `j` of the axis: its number, or its word on a categorical axis.
+    pub fn level(&self, j: usize) -> Level<'_> {
+        match self.words.get(j) {
+            Some(w) => Level::Word(w),
+            None => Level::Number(self.values[j]),
+        }
+    }
+
+    /// The axis as an option would give it: `FIELD=FROM:TO:spacing:N` (numbers in their
+    /// shortest exact form) or `FIELD=WORD,WORD,...`.
+    pub fn describe(&self) -> String {
+        if self.is_categorical() {
+            format!("{}={}", self.field, self.words.join(","))
+        } else {
+            format!(
+                "{}={:e}:{:e}:{}:{}",
+                self.field, self.from, self.to, self.spacing, self.n
+            )
+        }
     }
 
     /// The value in plotted coordinates: `log10(x)` on a log axis, `x` on a lin axis.
@@ -153,6 +302,101 @@ impl Axis {
         match self.spacing {
             Spacing::Lin => t,
             Spacing::Log => 10f64.powf(t),
+        }
+    }
+}
+
+/// `map.json`'s record of an axis: `field, from, to, spacing, n, values` for a numeric axis
+/// (the format of every map before categorical axes), `field, words, n` for a categorical
+/// one.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum AxisOut {
+    Numeric {
+        field: String,
+        from: f64,
+        to: f64,
+        spacing: Spacing,
+        n: usize,
+        values: Vec<f64>,
+    },
+    Categorical {
+        field: String,
+        words: Vec<String>,
+        n: usize,
+    },
+}
+
+impl From<Axis> for AxisOut {
+    fn from(a: Axis) -> Self {
+        if a.is_categorical() {
+            AxisOut::Categorical {
+                field: a.field,
+                words: a.words,
+                n: a.n,
+            }
+        } else {
+            AxisOut::Numeric {
+                field: a.field,
+                from: a.from,
+                to: a.to,
+                spacing: a.spacing,
+                n: a.n,
+                values: a.values,
+            }
+        }
+    }
+}
+
+/// An axis as `map.json` holds it, either form.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AxisIn {
+    field: String,
+    #[serde(default)]
+    from: Option<f64>,
+    #[serde(default)]
+    to: Option<f64>,
+    #[serde(default)]
+    spacing: Option<Spacing>,
+    n: usize,
+    #[serde(default)]
+    values: Option<Vec<f64>>,
+    #[serde(default)]
+    words: Option<Vec<String>>,
+}
+
+impl TryFrom<AxisIn> for Axis {
+    type Error = String;
+    fn try_from(a: AxisIn) -> Result<Self, String> {
+        match (a.from, a.to, a.spacing, a.values, a.words) {
+            (Some(from), Some(to), Some(spacing), Some(values), None) => Ok(Axis {
+                field: a.field,
+                from,
+                to,
+                spacing,
+                n: a.n,
+                values,
+                words: Vec::new(),
+            }),
+            (None, None, None, None, Some(words)) => {
+                if words.len() != a.n {
+                    return Err(format!(
+                        "axis {} has {} words for n = {}",
+                        a.field,
+                        words.len(),
+                        a.n
+                    ));
+                }
+                if words.is_empty() {
+                    return Err(format!("axis {} has no words", a.field));
+                }
+                Axis::categorical(&a.field, &words).map_err(|e| e.to_string())
+            }
+            _ => Err(format!(
+                "axis {}: either from, to, spacing and values (numbers) or words (a categorical axis)",
+                a.field
+            )),
         }
     }
 }
@@ -205,7 +449,7 @@ impl Grid {
         Ok(g)
     }
 
-    /// Parses one or two `--vary` options.
+    /// Parses one or two `--vary` options (each numeric or categorical, [`Axis::parse`]).
     pub fn parse<S: AsRef<str>>(options: &[S]) -> Result<Grid, DesignError> {
         let axes = options
             .iter()
@@ -233,6 +477,15 @@ impl Grid {
                     "axis {} has {} values for n = {}",
                     a.field,
                     a.values.len(),
+                    a.n
+                )));
+            }
+            let codes = a.values.iter().enumerate().all(|(i, &v)| v == i as f64);
+            if a.is_categorical() && (a.words.len() != a.n || !codes) {
+                return Err(DesignError::Grid(format!(
+                    "categorical axis {} has {} words for n = {} (values: the codes 0..n)",
+                    a.field,
+                    a.words.len(),
                     a.n
                 )));
             }
@@ -285,12 +538,28 @@ impl Grid {
         idx
     }
 
-    /// The field values of point `i`, one per axis.
+    /// Whether an axis is categorical.
+    pub fn has_categorical(&self) -> bool {
+        self.axes.iter().any(Axis::is_categorical)
+    }
+
+    /// The field values of point `i`, one per axis: numbers, and the word's code (its
+    /// position, 0, 1, ...) on a categorical axis. [`Grid::levels`] gives the words.
     pub fn values(&self, i: usize) -> Vec<f64> {
         self.indices(i)
             .iter()
             .zip(&self.axes)
             .map(|(&j, a)| a.values[j])
+            .collect()
+    }
+
+    /// The field values of point `i`, one per axis: numbers, and words on a categorical
+    /// axis. What an evaluator receives.
+    pub fn levels(&self, i: usize) -> Vec<Level<'_>> {
+        self.indices(i)
+            .iter()
+            .zip(&self.axes)
+            .map(|(&j, a)| a.level(j))
             .collect()
     }
 

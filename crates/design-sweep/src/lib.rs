@@ -5,8 +5,9 @@
 //! runs a full switch scene for given field values and reduces it to a [`DesignPoint`]
 //! (pull-out ratio = largest pull-out pressure / restoring pressure K_s d0; > 1 sticks).
 //!
-//! * [`Grid`] from `FIELD=FROM:TO:lin|log:N` options ([`Axis::parse`]); 1-D or 2-D, point
-//!   `i` ordered with the first axis varying slowest.
+//! * [`Grid`] from `FIELD=FROM:TO:lin|log:N` options, or categorical `FIELD=WORD,WORD,...`
+//!   (law names, choices; [`Axis::parse`]); 1-D or 2-D, point `i` ordered with the first
+//!   axis varying slowest. The evaluator receives each axis's [`Level`]: a number or a word.
 //! * [`run_map`] evaluates the grid, or one [`Shard`] `K/N` of it, in parallel (rayon),
 //!   in index order: the same [`Map`] whatever the thread count. Failing points get a
 //!   [`Status`] and the map goes on.
@@ -23,7 +24,7 @@
 //!   field from its threshold and CDF.
 //!
 //! ```
-//! use design_sweep::{run_map, threshold, DesignPoint, Grid, Labels, MapRequest,
+//! use design_sweep::{run_map, threshold, DesignPoint, Grid, Labels, Level, MapRequest,
 //!                    ThresholdOptions, FreeSide};
 //!
 //! // a stand-in for a switch run: ratio = (3e3 / k)^2, sticks below k = 3e3
@@ -39,7 +40,8 @@
 //! let grid = Grid::parse(&["switch.k_s=1e2:1e5:log:7"])?;
 //! let request = MapRequest { scene: serde_json::json!({"name": "demo"}), grid,
 //!                            accuracy: "fast".into(), shard: None };
-//! let map = run_map(request, |v: &[(&str, f64)]| point(v[0].1), |_done, _total| {});
+//! let map = run_map(request, |v: &[(&str, Level)]| point(v[0].1.number().unwrap()),
+//!                   |_done, _total| {});
 //! assert_eq!(map.points().len(), 7);
 //! assert!(map.to_csv()?.starts_with("switch.k_s,pull_out_ratio,"));
 //! let svg = map.to_svg(&Labels::new().with_unit("switch.k_s", "Pa/m"))?;
@@ -67,10 +69,10 @@ mod threshold;
 
 use std::collections::BTreeMap;
 
-pub use boundary::BoundaryPoint;
+pub use boundary::{BoundaryPoint, WordBoundary};
 pub use dist::{Correlation, Dist, DistSpec, Sampler, Scatter, DISTRIBUTIONS};
 pub use error::DesignError;
-pub use grid::{Axis, Grid, Spacing, MAX_AXIS_POINTS, MAX_GRID_POINTS};
+pub use grid::{Axis, Grid, Level, Spacing, MAX_AXIS_POINTS, MAX_GRID_POINTS};
 pub use map::{
     merge, run_map, Map, MapPoint, MapRequest, MapSummary, CSV_COLUMNS, MAP_FORMAT, MAP_VERSION,
     MAX_MAP_BYTES,

@@ -1,6 +1,6 @@
 //! Maps: evaluate a grid (or one shard of it) in parallel, write CSV/JSON, merge shards.
 
-use crate::grid::Grid;
+use crate::grid::{Grid, Level};
 use crate::point::{guarded, DesignPoint, PointError, Status};
 use crate::requirement::Requirement;
 use crate::shard::Shard;
@@ -141,7 +141,8 @@ pub struct MapRequest {
 pub struct MapPoint {
     /// Index in the grid (see [`Grid`] for the order).
     pub index: usize,
-    /// The field values, one per axis.
+    /// The field values, one per axis ([`Grid::values`]: on a categorical axis the code of
+    /// the word; [`Grid::levels`] of `index` gives the words).
     pub values: Vec<f64>,
     /// What became of the point.
     pub status: Status,
@@ -177,12 +178,13 @@ pub struct Map {
 /// rayon pool and collects them in index order, so the map does not depend on the number
 /// of threads or on sharding as long as `eval` is deterministic.
 ///
-/// `eval` receives `(field, value)` per axis. A point whose evaluator returns an error,
+/// `eval` receives `(field, value)` per axis, the value a number or the word of a
+/// categorical axis ([`Level`]). A point whose evaluator returns an error,
 /// panics or gives a non-finite number gets a status and the map goes on. `progress(done,
 /// total)` is called once with `done = 0` and after every point, from worker threads.
 pub fn run_map<F, E, P>(request: MapRequest, eval: F, progress: P) -> Map
 where
-    F: Fn(&[(&str, f64)]) -> Result<DesignPoint, E> + Sync,
+    F: Fn(&[(&str, Level<'_>)]) -> Result<DesignPoint, E> + Sync,
     E: Into<PointError>,
     P: Fn(usize, usize) + Sync,
 {
@@ -203,11 +205,11 @@ where
         .par_iter()
         .map(|&index| {
             let values = grid.values(index);
-            let args: Vec<(&str, f64)> = grid
+            let args: Vec<(&str, Level<'_>)> = grid
                 .axes()
                 .iter()
                 .map(|a| a.field.as_str())
-                .zip(values.iter().copied())
+                .zip(grid.levels(index))
                 .collect();
             let (status, design) = guarded(|| eval(&args));
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
@@ -290,7 +292,8 @@ impl Map {
     }
 
     /// `map.csv`: a header (the varied fields, then [`CSV_COLUMNS`]) and one row per point.
-    /// Numbers in Rust's shortest round-trip form (`{:e}`); absent values are empty cells.
+    /// Numbers in Rust's shortest round-trip form (`{:e}`), the word of a categorical axis
+    /// as it is; absent values are empty cells.
     pub fn to_csv(&self) -> Result<String, DesignError> {
         let mut w = csv::Writer::from_writer(Vec::new());
         let csv_err = |e: csv::Error| DesignError::Csv(e.to_string());
@@ -303,7 +306,12 @@ impl Map {
             .collect();
         w.write_record(&header).map_err(csv_err)?;
         for p in &self.points {
-            let mut row: Vec<String> = p.values.iter().map(|v| format!("{v:e}")).collect();
+            let mut row: Vec<String> = self
+                .grid
+                .levels(p.index)
+                .iter()
+                .map(ToString::to_string)
+                .collect();
             match &p.design {
                 Some(d) => {
                     row.push(format!("{:e}", d.pull_out_ratio));
@@ -399,10 +407,15 @@ impl Map {
                 }
             }
             let values = m.grid.values(i);
-            for (a, v) in m.grid.axes().iter().zip(&values) {
-                if p.values.get(&a.field) != Some(v) {
+            for (a, level) in m.grid.axes().iter().zip(m.grid.levels(i)) {
+                let same = match (p.values.get(&a.field), level) {
+                    (Some(ValueIn::Number(x)), Level::Number(v)) => *x == v,
+                    (Some(ValueIn::Word(w)), Level::Word(v)) => w == v,
+                    _ => false,
+                };
+                if !same {
                     return Err(bad(format!(
-                        "point {i}: {} is not the grid value {v:e}",
+                        "point {i}: {} is not the grid value {level}",
                         a.field
                     )));
                 }
@@ -640,11 +653,7 @@ where
         if m.grid != first.grid {
             return Err(refuse(
                 label,
-                format!(
-                    "its grid ({}) differs from {first_label}'s ({})",
-                    describe(&m.grid),
-                    describe(&first.grid)
-                ),
+                grid_difference(&m.grid, &first.grid, first_label),
             ));
         }
         if m.accuracy != first.accuracy {
@@ -727,9 +736,44 @@ where
 fn describe(g: &Grid) -> String {
     g.axes()
         .iter()
-        .map(|a| format!("{}={:e}:{:e}:{}:{}", a.field, a.from, a.to, a.spacing, a.n))
+        .map(|a| a.describe())
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// Why two grids differ, in words: the words of a categorical axis of the same field by
+/// name, else both grids in full.
+fn grid_difference(g: &Grid, first: &Grid, first_label: &str) -> String {
+    let same_fields = g.dim() == first.dim()
+        && g.axes()
+            .iter()
+            .zip(first.axes())
+            .all(|(a, b)| a.field == b.field);
+    if same_fields {
+        for (a, b) in g.axes().iter().zip(first.axes()) {
+            if (a.is_categorical() || b.is_categorical()) && a != b {
+                let words = |x: &crate::Axis| {
+                    if x.is_categorical() {
+                        x.words.join(", ")
+                    } else {
+                        format!("numbers, {}", x.describe())
+                    }
+                };
+                return format!(
+                    "the words of {} ({}) differ from {first_label}'s ({}): parts of one map \
+                     list the same words in the same order",
+                    a.field,
+                    words(a),
+                    words(b)
+                );
+            }
+        }
+    }
+    format!(
+        "its grid ({}) differs from {first_label}'s ({})",
+        describe(g),
+        describe(first)
+    )
 }
 
 /// The JSON pointer of the first place where `a` and `b` differ.
@@ -791,15 +835,16 @@ struct PointOut<'a> {
     in_window: Option<bool>,
 }
 
-/// Field values as a JSON object in axis order.
-struct Named<'a>(&'a Grid, &'a [f64]);
+/// Field values of a point (its index) as a JSON object in axis order: numbers, and the
+/// words of categorical axes.
+struct Named<'a>(&'a Grid, usize);
 
 impl Serialize for Named<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeMap;
-        let mut m = s.serialize_map(Some(self.1.len()))?;
-        for (a, v) in self.0.axes().iter().zip(self.1) {
-            m.serialize_entry(&a.field, v)?;
+        let mut m = s.serialize_map(Some(self.0.dim()))?;
+        for (a, v) in self.0.axes().iter().zip(self.0.levels(self.1)) {
+            m.serialize_entry(&a.field, &v)?;
         }
         m.end()
     }
@@ -820,7 +865,7 @@ impl Serialize for Map {
                 .iter()
                 .map(|p| PointOut {
                     index: p.index,
-                    values: Named(&self.grid, &p.values),
+                    values: Named(&self.grid, p.index),
                     status: p.status.word(),
                     detail: p.status.detail(),
                     design: p.design.as_ref(),
@@ -852,11 +897,19 @@ struct MapIn {
     points: Vec<PointIn>,
 }
 
+/// A field value of a point record: a number, or the word of a categorical axis.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub(crate) enum ValueIn {
+    Number(f64),
+    Word(String),
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct PointIn {
     pub(crate) index: usize,
-    pub(crate) values: BTreeMap<String, f64>,
+    pub(crate) values: BTreeMap<String, ValueIn>,
     status: String,
     #[serde(default)]
     detail: Option<String>,

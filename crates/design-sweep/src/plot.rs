@@ -1,6 +1,8 @@
 //! `map.svg`: the ratio over a 1-D grid, or a colour map of log10 ratio over a 2-D grid
-//! with the stiction boundary as a contour. Drawn in plotted coordinates (log10 of the
-//! value on a log axis) with our own tick marks, so every axis type is one chart type.
+//! with the stiction boundary as a contour; over a categorical and a numeric axis one
+//! curve per word. Drawn in plotted coordinates (log10 of the value on a log axis, the
+//! code 0, 1, ... of a word on a categorical axis) with our own tick marks, so every axis
+//! type is one chart type.
 
 use crate::boundary::contour_plotted;
 use crate::grid::{Axis, Spacing};
@@ -28,10 +30,20 @@ impl Map {
     /// that do not close or fail are drawn as markers at the axis floor). 2-D: a colour map
     /// of log10 ratio with a colour bar, the contour ratio = 1, grey cells that do not
     /// close and crossed cells that failed. Titles and axis labels come from `labels`.
+    ///
+    /// A categorical axis is drawn as its words, one tick each: 1-D, the ratio of each
+    /// word (no line joins them); 2-D over a categorical and a numeric axis, one curve of
+    /// the ratio against the numeric field per word, each in its own colour (filled
+    /// markers stick, open ones are free); 2-D over two categorical axes, the colour map
+    /// without a contour.
     pub fn to_svg(&self, labels: &Labels) -> Result<String, DesignError> {
         let mut buf = String::new();
-        match self.grid().dim() {
+        let g = self.grid();
+        match g.dim() {
             1 => draw_1d(self, labels, &mut buf)?,
+            _ if g.axes()[0].is_categorical() != g.axes()[1].is_categorical() => {
+                draw_by_word(self, labels, &mut buf)?
+            }
             _ => draw_2d(self, labels, &mut buf)?,
         }
         Ok(buf)
@@ -46,6 +58,8 @@ struct Scale {
     bold: Vec<f64>,
     light: Vec<f64>,
     digits: usize,
+    /// The words of a categorical axis: tick `k` is labelled `words[k]`.
+    words: Vec<String>,
 }
 
 impl Scale {
@@ -65,11 +79,29 @@ impl Scale {
             bold,
             light,
             digits,
+            words: Vec::new(),
         }
     }
 
-    /// The axis of a grid's values, padded by half a cell.
+    /// The axis of a categorical axis's words: one tick per word at its code, half a code
+    /// of margin on either side.
+    fn of_words(axis: &Axis) -> Scale {
+        Scale {
+            lo: -0.5,
+            hi: axis.n as f64 - 0.5,
+            log: false,
+            bold: axis.values.clone(),
+            light: Vec::new(),
+            digits: 1,
+            words: axis.words.clone(),
+        }
+    }
+
+    /// The axis of a grid's values, padded by half a cell (a categorical axis: its words).
     fn of_axis(axis: &Axis, pad_fraction: f64) -> Scale {
+        if axis.is_categorical() {
+            return Scale::of_words(axis);
+        }
         let ts: Vec<f64> = axis.values.iter().map(|&v| axis.plotted(v)).collect();
         let (lo, hi) = min_max(&ts);
         let (lo, hi) = if hi > lo {
@@ -96,6 +128,14 @@ impl Scale {
     }
 
     fn label(&self, t: f64) -> String {
+        if !self.words.is_empty() {
+            let k = t.round();
+            return if k >= 0.0 && (k as usize) < self.words.len() {
+                self.words[k as usize].clone()
+            } else {
+                String::new()
+            };
+        }
         if self.log {
             fmt_sig(10f64.powf(t), self.digits)
         } else {
@@ -229,6 +269,52 @@ fn trim_zeros(s: &str) -> String {
     }
 }
 
+/// The ratio axis of a plot of ratios: logarithmic when the positive ratios (and 1) span a
+/// decade or more; `floor` (plotted) is where points of ratio 0 and failed points sit.
+struct RatioAxis {
+    scale: Scale,
+    floor: f64,
+    log: bool,
+}
+
+impl RatioAxis {
+    fn of<'a>(points: impl Iterator<Item = &'a crate::map::MapPoint>) -> RatioAxis {
+        let positive: Vec<f64> = points
+            .filter_map(|p| p.ratio().filter(|r| *r > 0.0))
+            .collect();
+        let (rmin, rmax) = min_max(&positive);
+        let (rmin, rmax) = (rmin.min(1.0), rmax.max(1.0));
+        if rmax / rmin >= 10.0 {
+            let (lo, hi) = (rmin.log10(), rmax.log10());
+            let span = (hi - lo).max(0.2);
+            let (ylo, yhi) = (lo - 0.12 * span, hi + 0.06 * span);
+            RatioAxis {
+                scale: Scale::new(ylo, yhi, true),
+                floor: lo - 0.08 * span,
+                log: true,
+            }
+        } else {
+            let top = (1.15 * rmax).max(1.2);
+            RatioAxis {
+                scale: Scale::new(-0.05 * top, top, false),
+                floor: 0.0,
+                log: false,
+            }
+        }
+    }
+
+    /// The axis raised so that the top `rows` legend rows (of a plot 620 px high) sit
+    /// above every point: the legend box in the upper right then hides none of them.
+    fn with_legend_rows(self, rows: usize) -> RatioAxis {
+        let f = ((rows as f64 * 20.0 + 20.0) / 510.0).min(0.5);
+        let (lo, hi) = (self.scale.lo, self.scale.hi);
+        RatioAxis {
+            scale: Scale::new(lo, hi + (hi - lo) * f / (1.0 - f), self.scale.log),
+            ..self
+        }
+    }
+}
+
 fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignError> {
     let axis = &map.grid().axes()[0];
     let xs = Scale::of_axis(axis, 0.03);
@@ -238,31 +324,17 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
         .iter()
         .map(|p| (axis.plotted(p.values[0]), p))
         .collect();
-    let positive: Vec<f64> = pts
-        .iter()
-        .filter_map(|(_, p)| p.ratio().filter(|r| *r > 0.0))
-        .collect();
-    let (rmin, rmax) = min_max(&positive);
-    let (rmin, rmax) = (rmin.min(1.0), rmax.max(1.0));
-    let log_y = rmax / rmin >= 10.0;
-    // y in plotted coordinates; `floor` is where ratio-0 and failed points sit
-    let (ys, floor, to_y): (Scale, f64, Box<dyn Fn(f64) -> f64>) = if log_y {
-        let (lo, hi) = (rmin.log10(), rmax.log10());
-        let span = (hi - lo).max(0.2);
-        let (ylo, yhi) = (lo - 0.12 * span, hi + 0.06 * span);
-        (
-            Scale::new(ylo, yhi, true),
-            lo - 0.08 * span,
-            Box::new(|r: f64| r.log10()),
-        )
-    } else {
-        let top = (1.15 * rmax).max(1.2);
-        (
-            Scale::new(-0.05 * top, top, false),
-            0.0,
-            Box::new(|r: f64| r),
-        )
-    };
+    let mut ratio_axis = RatioAxis::of(pts.iter().map(|(_, p)| *p));
+    if axis.is_categorical() {
+        // the legend's rows: the line, the markers, rings, crosses, the window
+        ratio_axis = ratio_axis.with_legend_rows(5);
+    }
+    let RatioAxis {
+        scale: ys,
+        floor,
+        log: log_y,
+    } = ratio_axis;
+    let to_y = |r: f64| if log_y { r.log10() } else { r };
 
     let title = labels.title.clone().unwrap_or_else(|| {
         format!(
@@ -308,7 +380,9 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
         .label("ratio = 1: sticks above")
         .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], boundary));
 
-    // the curve, broken where a point has no positive ratio
+    // the curve, broken where a point has no positive ratio (none between words: they
+    // have no order)
+    let categorical = axis.is_categorical();
     let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
     for (x, p) in &pts {
         match p.ratio().filter(|r| *r > 0.0) {
@@ -317,6 +391,9 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
         }
     }
     let line = BLACK.stroke_width(2);
+    if categorical {
+        runs.clear();
+    }
     for (k, run) in runs.iter().filter(|r| !r.is_empty()).enumerate() {
         let s = chart
             .draw_series(LineSeries::new(run.iter().copied(), line))
@@ -326,15 +403,21 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], line));
         }
     }
-    chart
+    let markers = chart
         .draw_series(pts.iter().filter_map(|(x, p)| {
             let d = p.design.filter(|_| p.status == Status::Ok)?;
             (d.pull_out_ratio > 0.0).then(|| {
                 let c = if d.pull_out_ratio < 1.0 { FREE } else { STICK };
-                Circle::new((*x, to_y(d.pull_out_ratio)), 4, c.filled())
+                let size = if categorical { 7 } else { 4 };
+                Circle::new((*x, to_y(d.pull_out_ratio)), size, c.filled())
             })
         }))
         .map_err(plot_err)?;
+    if categorical {
+        markers
+            .label("pull-out ratio of each word (red: sticks, blue: free)")
+            .legend(|(x, y)| Circle::new((x + 10, y), 5, STICK.filled()));
+    }
     if let Some(r) = map.requirement() {
         let ring = GREEN.stroke_width(2);
         chart
@@ -371,6 +454,198 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
             .map_err(plot_err)?
             .label("failed or out of domain")
             .legend(move |(x, y)| Cross::new((x + 10, y), 6, st));
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font((FONT, 14))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(plot_err)?;
+    root.present().map_err(plot_err)
+}
+
+/// Colours of the words of a categorical axis, in order (Tableau 10 without its red, which
+/// draws the line ratio = 1); more words than colours cycle.
+const WORD_COLOURS: [RGBColor; 9] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(23, 190, 207),
+];
+
+/// A map over a categorical and a numeric axis: the ratio against the numeric field, one
+/// curve per word (its colour in the legend), the line ratio = 1; filled markers stick,
+/// open ones are free; points that do not close (rings) and failed points (crosses) sit at
+/// the bottom in their word's colour.
+fn draw_by_word(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignError> {
+    let g = map.grid();
+    let (c, x) = if g.axes()[0].is_categorical() {
+        (0, 1)
+    } else {
+        (1, 0)
+    };
+    let (cat, num) = (&g.axes()[c], &g.axes()[x]);
+    let xs = Scale::of_axis(num, 0.03);
+    // per word: (plotted x, point), ascending along the numeric axis
+    let curves: Vec<Vec<(f64, &crate::map::MapPoint)>> = (0..cat.n)
+        .map(|w| {
+            (0..num.n)
+                .filter_map(|j| {
+                    let mut idx = [0; 2];
+                    idx[c] = w;
+                    idx[x] = j;
+                    map.point(g.index(&idx))
+                        .map(|p| (num.plotted(num.values[j]), p))
+                })
+                .collect()
+        })
+        .collect();
+    // the legend's rows: the line, the words, the markers at the bottom, the window
+    let RatioAxis {
+        scale: ys,
+        floor,
+        log: log_y,
+    } = RatioAxis::of(map.points().iter()).with_legend_rows(cat.n + 3);
+    let to_y = |r: f64| if log_y { r.log10() } else { r };
+
+    let title = labels.title.clone().unwrap_or_else(|| {
+        format!(
+            "Pull-out / restoring pressure vs {} by {} ({})",
+            num.field,
+            cat.field,
+            map.accuracy()
+        )
+    });
+    let root = SVGBackend::with_string(buf, (900, 620)).into_drawing_area();
+    root.fill(&WHITE).map_err(plot_err)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, (FONT, 22))
+        .margin(15)
+        .x_label_area_size(50)
+        .y_label_area_size(85)
+        .build_cartesian_2d(xs.coord(), ys.coord())
+        .map_err(plot_err)?;
+    let xf = |t: &f64| xs.label(*t);
+    let yf = |t: &f64| ys.label(*t);
+    chart
+        .configure_mesh()
+        .x_desc(labels.axis_label(&num.field))
+        .y_desc(if log_y {
+            "pull-out ratio (log scale)"
+        } else {
+            "pull-out ratio"
+        })
+        .x_label_formatter(&xf)
+        .y_label_formatter(&yf)
+        .label_style((FONT, 15))
+        .axis_desc_style((FONT, 16))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(plot_err)?;
+
+    let boundary = STICK.stroke_width(2);
+    chart
+        .draw_series(LineSeries::new(
+            [(xs.lo, to_y(1.0)), (xs.hi, to_y(1.0))],
+            boundary,
+        ))
+        .map_err(plot_err)?
+        .label("ratio = 1: sticks above (filled: sticks, open: free)")
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], boundary));
+
+    for (w, pts) in curves.iter().enumerate() {
+        let colour = WORD_COLOURS[w % WORD_COLOURS.len()];
+        let line = colour.stroke_width(2);
+        // the curve, broken where a point has no positive ratio
+        let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+        for (x, p) in pts {
+            match p.ratio().filter(|r| *r > 0.0) {
+                Some(r) => runs.last_mut().expect("non-empty").push((*x, to_y(r))),
+                None => runs.push(Vec::new()),
+            }
+        }
+        let label = format!("{} = {}", cat.field, cat.words[w]);
+        let mut labelled = false;
+        for run in runs.iter().filter(|r| !r.is_empty()) {
+            let s = chart
+                .draw_series(LineSeries::new(run.iter().copied(), line))
+                .map_err(plot_err)?;
+            if !labelled {
+                s.label(label.clone())
+                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], line));
+                labelled = true;
+            }
+        }
+        chart
+            .draw_series(pts.iter().filter_map(|(x, p)| {
+                let d = p.design.filter(|_| p.status == Status::Ok)?;
+                (d.pull_out_ratio > 0.0).then(|| {
+                    let style = if d.pull_out_ratio < 1.0 {
+                        colour.stroke_width(2)
+                    } else {
+                        colour.filled()
+                    };
+                    Circle::new((*x, to_y(d.pull_out_ratio)), 4, style)
+                })
+            }))
+            .map_err(plot_err)?;
+        let no_close: Vec<f64> = pts
+            .iter()
+            .filter(|(_, p)| p.status.has_design() && p.ratio() == Some(0.0))
+            .map(|(x, _)| *x)
+            .collect();
+        let failed: Vec<f64> = pts
+            .iter()
+            .filter(|(_, p)| !p.status.has_design())
+            .map(|(x, _)| *x)
+            .collect();
+        let st = colour.stroke_width(2);
+        let s = chart
+            .draw_series(no_close.iter().map(|&x| Circle::new((x, floor), 5, st)))
+            .map_err(plot_err)?;
+        if !labelled && !no_close.is_empty() {
+            s.label(label.clone())
+                .legend(move |(x, y)| Circle::new((x + 10, y), 5, st));
+            labelled = true;
+        }
+        let s = chart
+            .draw_series(failed.iter().map(|&x| Cross::new((x, floor), 6, st)))
+            .map_err(plot_err)?;
+        if !labelled && !failed.is_empty() {
+            s.label(label)
+                .legend(move |(x, y)| Cross::new((x + 10, y), 6, st));
+        }
+    }
+    if map
+        .points()
+        .iter()
+        .any(|p| p.ratio() == Some(0.0) || !p.status.has_design())
+    {
+        // what the markers at the bottom mean, once
+        let grey = RGBColor(110, 110, 110).stroke_width(2);
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(plot_err)?
+            .label("at the bottom: ring does not close, cross failed")
+            .legend(move |(x, y)| Circle::new((x + 10, y), 5, grey));
+    }
+    if let Some(r) = map.requirement() {
+        let ring = GREEN.stroke_width(2);
+        chart
+            .draw_series(curves.iter().flatten().filter_map(|(x, p)| {
+                let d = p.design.filter(|d| r.in_window(d))?;
+                Some(Circle::new((*x, to_y(d.pull_out_ratio)), 8, ring))
+            }))
+            .map_err(plot_err)?
+            .label(format!("free and {r}"))
+            .legend(move |(x, y)| Circle::new((x + 10, y), 8, ring));
     }
     chart
         .configure_series_labels()
@@ -439,8 +714,14 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
             })
     };
     let ((xlo, xhi), (ylo, yhi)) = (span(&ex), span(&ey));
-    let xs = Scale::new(xlo, xhi, ax.spacing == Spacing::Log);
-    let ys = Scale::new(ylo, yhi, ay.spacing == Spacing::Log);
+    let scale = |a: &Axis, lo: f64, hi: f64| {
+        if a.is_categorical() {
+            Scale::of_words(a)
+        } else {
+            Scale::new(lo, hi, a.spacing == Spacing::Log)
+        }
+    };
+    let (xs, ys) = (scale(ax, xlo, xhi), scale(ay, ylo, yhi));
     let levels: Vec<f64> = map
         .points()
         .iter()
@@ -540,8 +821,11 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
             )))
             .map_err(plot_err)?;
     }
-    let mut legend =
-        String::from("black line: ratio = 1 (stiction boundary); red sticks, blue free");
+    let mut legend = String::from(if g.has_categorical() {
+        "red sticks, blue free, white at ratio = 1 (no contour between words)"
+    } else {
+        "black line: ratio = 1 (stiction boundary); red sticks, blue free"
+    });
     if any_no_close {
         legend.push_str("; grey: does not close (not free)");
     }

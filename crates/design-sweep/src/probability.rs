@@ -12,7 +12,7 @@
 //! close partition the counted samples.
 
 use crate::dist::{short, Correlation, Sampler, Scatter};
-use crate::map::{first_difference, point_design, read_bounded, PointIn};
+use crate::map::{first_difference, point_design, read_bounded, PointIn, ValueIn};
 use crate::point::{guarded, DesignPoint, PointError, Status};
 use crate::shard::Shard;
 use crate::stats::{clopper_pearson, spearman, spearman_interval};
@@ -1028,7 +1028,7 @@ impl Probability {
             }
             let values = sampler.values(i);
             for (s, v) in plan.scatter.iter().zip(&values) {
-                if p.values.get(&s.field) != Some(v) {
+                if p.values.get(&s.field) != Some(&ValueIn::Number(*v)) {
                     return Err(bad(format!(
                         "point {i}: {} is not the value {v:e} that seed {} gives sample {i}",
                         s.field, plan.seed

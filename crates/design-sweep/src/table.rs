@@ -1,5 +1,6 @@
 //! Plain-text tables for `--format table`.
 
+use crate::grid::Level;
 use crate::map::Map;
 use crate::plot::fmt_sig;
 use crate::threshold::{FreeSide, Threshold};
@@ -212,8 +213,13 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
     let at = |i: usize| {
         g.axes()
             .iter()
-            .zip(g.values(i))
-            .map(|(a, x)| format!("{} = {}", a.field, with_unit(x, 6, labels.unit(&a.field))))
+            .zip(g.levels(i))
+            .map(|(a, v)| match v {
+                Level::Number(x) => {
+                    format!("{} = {}", a.field, with_unit(x, 6, labels.unit(&a.field)))
+                }
+                Level::Word(w) => format!("{} = {w}", a.field),
+            })
             .collect::<Vec<_>>()
             .join(", ")
     };
@@ -245,6 +251,25 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
     }
     for (k, a) in g.axes().iter().enumerate() {
         let unit = labels.unit(&a.field);
+        let slowest = if g.dim() == 2 && k == 0 {
+            " (varies slowest)"
+        } else {
+            ""
+        };
+        if a.is_categorical() {
+            row(
+                &mut s,
+                &format!("axis {}", k + 1),
+                format!(
+                    "{}: {} ({} word{}){slowest}",
+                    a.field,
+                    a.words.join(", "),
+                    a.n,
+                    if a.n == 1 { "" } else { "s" }
+                ),
+            );
+            continue;
+        }
         row(
             &mut s,
             &format!("axis {}", k + 1),
@@ -255,11 +280,7 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
                 with_unit(a.to, 6, unit),
                 a.spacing,
                 a.n,
-                if g.dim() == 2 && k == 0 {
-                    " (varies slowest)"
-                } else {
-                    ""
-                }
+                slowest
             ),
         );
     }
@@ -304,7 +325,21 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
             ),
         );
     }
-    if g.dim() == 1 {
+    if g.dim() == 1 && g.has_categorical() {
+        // each word's ratio: the words have no order, so no crossing between them
+        let a = &g.axes()[0];
+        for (j, w) in a.words.iter().enumerate() {
+            let r = map.point(j).map(|p| match (&p.status, p.ratio()) {
+                // no pull-out at all (no adhesion): free, not "does not close"
+                (crate::Status::Ok, Some(0.0)) => "0 (free)".to_owned(),
+                (crate::Status::Ok | crate::Status::DoesNotClose, r) => ratio_word(r),
+                (other, _) => format!("- ({})", other.word()),
+            });
+            if let Some(r) = r {
+                row(&mut s, "ratio", format!("{} = {w}: {r}", a.field));
+            }
+        }
+    } else if g.dim() == 1 {
         let a = &g.axes()[0];
         let unit = labels.unit(&a.field);
         let b = map.boundary_1d();
@@ -329,6 +364,46 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
                     p.kind.word()
                 ),
             );
+        }
+    } else if g.has_categorical() {
+        let by_word = map.boundary_by_word();
+        if by_word.is_empty() {
+            row(
+                &mut s,
+                "boundary",
+                "none drawn: both axes are categorical (each point's ratio in map.csv)".into(),
+            );
+        }
+        for b in by_word {
+            let num = g
+                .axes()
+                .iter()
+                .find(|a| !a.is_categorical())
+                .expect("a numeric axis beside the categorical one");
+            let unit = labels.unit(&num.field);
+            let at_word = format!("{} = {}", b.field, b.word);
+            if b.crossings.is_empty() {
+                row(
+                    &mut s,
+                    "boundary",
+                    format!("{at_word}: no crossing of ratio = 1 on the grid"),
+                );
+            }
+            for p in b.crossings {
+                row(
+                    &mut s,
+                    "boundary",
+                    format!(
+                        "{at_word}: {} ~ {} (between {} and {}), free {}, {}",
+                        num.field,
+                        with_unit(p.value, 4, unit),
+                        fmt_sig(p.between[0], 6),
+                        fmt_sig(p.between[1], 6),
+                        p.free_side.word(),
+                        p.kind.word()
+                    ),
+                );
+            }
         }
     } else {
         let lines = map.boundary_2d();

@@ -4,8 +4,8 @@ mod common;
 
 use common::{flaky, power, product};
 use design_sweep::{
-    merge, run_map, DesignError, DesignPoint, Grid, Labels, Map, MapRequest, PointError, Shard,
-    Status, CSV_COLUMNS,
+    merge, run_map, DesignError, DesignPoint, Grid, Labels, Level, Map, MapRequest, PointError,
+    Shard, Status, CSV_COLUMNS,
 };
 use serde_json::{json, Value};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -105,7 +105,7 @@ fn failing_points_get_a_status_and_the_map_completes() {
     let last = AtomicUsize::new(0);
     let map = run_map(
         request(&specs, None),
-        |v: &[(&str, f64)]| {
+        |v: &[(&str, Level)]| {
             calls.fetch_add(1, Ordering::Relaxed);
             flaky(v)
         },
@@ -152,8 +152,8 @@ fn failing_points_get_a_status_and_the_map_completes() {
     // a failed or non-finite evaluator answer is a status, never a NaN in the output
     let nan = run_map(
         request(&specs, None),
-        |v: &[(&str, f64)]| -> Result<DesignPoint, PointError> {
-            let mut p = common::point(1.0, v[0].1);
+        |v: &[(&str, Level)]| -> Result<DesignPoint, PointError> {
+            let mut p = common::point(1.0, common::num(v, 0));
             p.pull_out_ratio = f64::NAN;
             Ok(p)
         },
@@ -335,7 +335,7 @@ fn power_law_evaluator_is_usable_as_a_map_evaluator() {
     let f = power(1e3, 2.0);
     let m = run_map(
         request(&["switch.k_s=1e2:1e4:log:9"], None),
-        |v: &[(&str, f64)]| f(v[0].1),
+        |v: &[(&str, Level)]| f(common::num(v, 0)),
         |_, _| {},
     );
     let b = m.boundary_1d();

@@ -5,7 +5,7 @@ mod common;
 
 use common::{flaky, point};
 use design_sweep::{
-    run_map, DesignError, DesignPoint, Grid, Map, MapRequest, PointError, Shard, Status,
+    run_map, DesignError, DesignPoint, Grid, Level, Map, MapRequest, PointError, Shard, Status,
     MAX_MAP_BYTES,
 };
 use serde_json::{json, Value};
@@ -21,7 +21,7 @@ fn mixed() -> Map {
         accuracy: "fast".into(),
         shard: Some(Shard::new(1, 1).unwrap()),
     };
-    run_map(request, |v: &[(&str, f64)]| flaky(v), |_, _| {})
+    run_map(request, |v: &[(&str, Level)]| flaky(v), |_, _| {})
 }
 
 /// The position in `points` of the first point satisfying `pred`, and its grid index.
@@ -178,9 +178,10 @@ fn an_evaluator_answer_that_contradicts_itself_is_a_failed_point() {
     };
     let m = run_map(
         request,
-        |v: &[(&str, f64)]| -> Result<DesignPoint, PointError> {
-            let mut p = point(2.0 / v[0].1, 1.0);
-            if v[0].1 == 3.0 {
+        |v: &[(&str, Level)]| -> Result<DesignPoint, PointError> {
+            let x = common::num(v, 0);
+            let mut p = point(2.0 / x, 1.0);
+            if x == 3.0 {
                 p.sticks = true; // ratio 2/3 marked as sticking
             }
             Ok(p)

@@ -3,12 +3,12 @@
 mod common;
 
 use common::{flaky, product};
-use design_sweep::{map_table, run_map, Grid, Labels, Map, MapRequest};
+use design_sweep::{map_table, run_map, Grid, Labels, Level, Map, MapRequest};
 use serde_json::json;
 
 fn run<F>(specs: &[&str], eval: F) -> Map
 where
-    F: Fn(&[(&str, f64)]) -> Result<design_sweep::DesignPoint, design_sweep::PointError> + Sync,
+    F: Fn(&[(&str, Level)]) -> Result<design_sweep::DesignPoint, design_sweep::PointError> + Sync,
 {
     let request = MapRequest {
         scene: json!({"name": "test"}),
@@ -134,7 +134,7 @@ fn failed_and_non_closing_points_are_drawn_not_dropped() {
             "switch.k_s=100:2000:lin:20",
             "surface.sigma_s=1e-9:2e-9:lin:3",
         ],
-        |v: &[(&str, f64)]| flaky(&v[..1]),
+        |v: &[(&str, Level)]| flaky(&v[..1]),
     );
     let svg2 = map2.to_svg(&labels()).unwrap();
     roxmltree::Document::parse(&svg2).unwrap();
@@ -146,8 +146,8 @@ fn failed_and_non_closing_points_are_drawn_not_dropped() {
 
 #[test]
 fn one_d_svg_with_a_log_grid_is_well_formed() {
-    let map = run(&["switch.k_s=1e2:1e5:log:31"], |v: &[(&str, f64)]| {
-        common::power(3e3, 2.0)(v[0].1)
+    let map = run(&["switch.k_s=1e2:1e5:log:31"], |v: &[(&str, Level)]| {
+        common::power(3e3, 2.0)(common::num(v, 0))
     });
     let svg = map.to_svg(&labels().with_title("k_s sweep")).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();

@@ -4,8 +4,8 @@
 mod common;
 
 use design_sweep::{
-    merge, run_map, threshold_with, DesignPoint, Grid, Map, MapRequest, PointError, Requirement,
-    Shard, ThresholdOptions,
+    merge, run_map, threshold_with, DesignPoint, Grid, Level, Map, MapRequest, PointError,
+    Requirement, Shard, ThresholdOptions,
 };
 use serde_json::json;
 
@@ -77,8 +77,12 @@ fn map(shard: Option<Shard>) -> Map {
         accuracy: "fast".into(),
         shard,
     };
-    run_map(request, |v: &[(&str, f64)]| point(v[0].1), |_, _| {})
-        .with_requirement(Some(Requirement::parse("contact_resistance<1").unwrap()))
+    run_map(
+        request,
+        |v: &[(&str, Level)]| point(v[0].1.number().unwrap()),
+        |_, _| {},
+    )
+    .with_requirement(Some(Requirement::parse("contact_resistance<1").unwrap()))
 }
 
 #[test]

@@ -2,7 +2,9 @@
 //! most the scene's `cycles`), reduced to the pull-out ratio phi x largest pull-out /
 //! K_s d0 (> 1 sticks), and the engine of the crate `design-sweep` turns design points into
 //! the critical value of one scene field ([`threshold`]) and 1-D or 2-D maps over one or
-//! two fields ([`map`], shardable). User guide: `docs/design.md`.
+//! two fields ([`map`], shardable): numeric fields (`FIELD=FROM:TO:lin|log:N`) and fields
+//! whose value is a word, a law name or a choice (`FIELD=WORD,WORD,...`, e.g.
+//! `contact.plasticity_law=etsion_kadin,kogut_etsion`). User guide: `docs/design.md`.
 //!
 //! Every design point starts from the scene as written (before validation, so that
 //! defaults derived from other keys, such as `switch.film_youngs_modulus`, follow a varied
@@ -13,15 +15,15 @@
 use crate::accuracy::Accuracy;
 use crate::error::ModelError;
 use crate::guards::{Validity, Warning};
-use crate::keys::{self, num, Key, Kind};
+use crate::keys::{self, num, Domain, Key, Kind};
 use crate::laws::LawRegistry;
 use crate::scene::Scene;
 use crate::spec::{Drive, SwitchSpec};
 use crate::switch::{SwitchModel, SwitchResult};
 use crate::{Progress, Silent};
 pub use design_sweep::{
-    DesignPoint, Grid, Labels, Map, MapRequest, PointError, Quantity, Requirement, Shard,
-    Threshold, ThresholdOptions,
+    Axis, DesignPoint, Grid, Labels, Level, Map, MapRequest, PointError, Quantity, Requirement,
+    Shard, Threshold, ThresholdOptions,
 };
 use std::collections::BTreeMap;
 use std::sync::Mutex;
@@ -120,17 +122,32 @@ impl<'a> Evaluator<'a> {
     /// the base scene, validated. A value outside a key's domain, or a rule between keys it
     /// breaks, is [`PointError::OutOfDomain`] with the scene's message.
     pub fn spec(&self, values: &[(&str, f64)]) -> Result<SwitchSpec, PointError> {
+        self.spec_at(&numbers(values))
+    }
+
+    /// [`Evaluator::spec`] of a point whose fields may be words (a law name, a choice),
+    /// set on the scene as a scene file writes them (`plasticity_law = "kogut_etsion"`).
+    pub fn spec_at(&self, values: &[(&str, Level<'_>)]) -> Result<SwitchSpec, PointError> {
         let mut s = self.base.clone();
         let out = |e: ModelError| PointError::OutOfDomain(e.without_file());
         for &(key, v) in values {
-            s.set_number(key, v).map_err(|e| out(e.into()))?;
+            match v {
+                Level::Number(x) => s.set_number(key, x),
+                Level::Word(w) => s.set(key, toml::Value::String(w.to_owned())),
+            }
+            .map_err(|e| out(e.into()))?;
         }
         SwitchSpec::new(&s, self.registry).map_err(out)
     }
 
     /// The full switch result of one point.
     pub fn result(&self, values: &[(&str, f64)]) -> Result<SwitchResult, PointError> {
-        let spec = self.spec(values)?;
+        self.result_at(&numbers(values))
+    }
+
+    /// [`Evaluator::result`] of a point whose fields may be words.
+    pub fn result_at(&self, values: &[(&str, Level<'_>)]) -> Result<SwitchResult, PointError> {
+        let spec = self.spec_at(values)?;
         let model =
             SwitchModel::build(&spec).map_err(|e| PointError::OutOfDomain(e.without_file()))?;
         model.run(&Silent).map_err(|e| {
@@ -153,8 +170,13 @@ impl<'a> Evaluator<'a> {
     /// (the surface cannot absorb the impact energy, mostly where adhesion pulls harder
     /// than the asperities push back), are `OutOfDomain`; the others `Failed`.
     pub fn point(&self, values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
-        let r = self.result(values)?;
-        self.record(values, &r.warnings);
+        self.point_at(&numbers(values))
+    }
+
+    /// [`Evaluator::point`] of a point whose fields may be words: what a map runs.
+    pub fn point_at(&self, values: &[(&str, Level<'_>)]) -> Result<DesignPoint, PointError> {
+        let r = self.result_at(values)?;
+        self.record_at(values, &r.warnings);
         Ok(design_point(&r))
     }
 
@@ -163,12 +185,20 @@ impl<'a> Evaluator<'a> {
     /// runs. For a front end that runs the points elsewhere ([`Evaluator::result`] and
     /// [`design_point`] on the workers of a cluster) and collects their warnings here.
     pub fn record(&self, values: &[(&str, f64)], warnings: &[Warning]) {
+        self.record_at(&numbers(values), warnings)
+    }
+
+    /// [`Evaluator::record`] of a point whose fields may be words.
+    pub fn record_at(&self, values: &[(&str, Level<'_>)], warnings: &[Warning]) {
         if warnings.is_empty() {
             return;
         }
         let at = values
             .iter()
-            .map(|(k, v)| format!("{k} = {}", num(*v)))
+            .map(|(k, v)| match v {
+                Level::Number(x) => format!("{k} = {}", num(*x)),
+                Level::Word(w) => format!("{k} = {w}"),
+            })
             .collect::<Vec<_>>()
             .join(", ");
         if let Ok(mut g) = self.guards.lock() {
@@ -213,6 +243,11 @@ impl<'a> Evaluator<'a> {
     }
 }
 
+/// Numeric field values as levels.
+fn numbers<'a>(values: &[(&'a str, f64)]) -> Vec<(&'a str, Level<'a>)> {
+    values.iter().map(|&(k, v)| (k, Level::Number(v))).collect()
+}
+
 /// A switch result reduced to a design point: a switch that does not close has ratio 0.
 pub fn design_point(r: &SwitchResult) -> DesignPoint {
     if !r.closes {
@@ -252,6 +287,87 @@ pub fn variable_fields() -> impl Iterator<Item = &'static Key> {
     keys::KEYS.iter().filter(|f| variable(f))
 }
 
+/// Whether a registry key is a field a map may vary over words: a law name or a choice of
+/// a switch scene written `section.key`.
+fn categorical(f: &Key) -> bool {
+    matches!(f.domain, Domain::Law | Domain::Choice(_))
+        && f.key.contains('.')
+        && f.in_kind(Kind::Switch)
+}
+
+/// The fields a map may vary over words (`FIELD=WORD,WORD,...`), in registry order: the
+/// law names (`contact.adhesion_law`, `contact.plasticity_law`) and the choices
+/// (`contact.yield_modulus`, `contact.reload`, `contact.counter`) of a switch scene.
+pub fn categorical_fields() -> impl Iterator<Item = &'static Key> {
+    keys::KEYS.iter().filter(|f| categorical(f))
+}
+
+/// The words a categorical field accepts, and what they are in words: the names of the
+/// registry's laws of its kind, or the key's choices.
+fn accepted_words<'r>(f: &Key, registry: &'r LawRegistry) -> (String, Vec<&'r str>) {
+    match (f.domain, f.key) {
+        (Domain::Choice(words), k) => (format!("a choice of {k}"), words.to_vec()),
+        (_, k @ "contact.adhesion_law") => (
+            format!("a registered adhesion law ({k})"),
+            registry.adhesion_names(),
+        ),
+        (_, k @ "contact.plasticity_law") => (
+            format!("a registered plasticity law ({k})"),
+            registry.plasticity_names(),
+        ),
+        (_, k) => (format!("a word {k} takes"), Vec::new()),
+    }
+}
+
+/// Checks a categorical axis (`FIELD=WORD,WORD,...`; `option` the text as given): the
+/// field takes words (a law name or a choice of a switch scene), and each word is one the
+/// scene key accepts (a law of `registry` of the key's kind, or one of the key's choices),
+/// before any point runs. Errors name the option and the word.
+pub fn check_words(
+    axis: &Axis,
+    option: &str,
+    registry: &LawRegistry,
+) -> Result<&'static Key, ModelError> {
+    let field = axis.field.as_str();
+    let fail = |reason: String| {
+        Err(ModelError::Design(design_sweep::DesignError::Axis {
+            option: option.to_owned(),
+            reason,
+        }))
+    };
+    let Some(f) = keys::key(field).filter(|f| categorical(f)) else {
+        let list = categorical_fields()
+            .map(|f| f.key)
+            .collect::<Vec<_>>()
+            .join(", ");
+        let why = match keys::key(field) {
+            Some(f) if variable(f) => {
+                return fail(format!(
+                    "{field} takes numbers, not words: vary it as {field}=FROM:TO:lin|log:N"
+                ))
+            }
+            Some(f) if !f.key.contains('.') => format!(
+                "`{field}` is a top-level setting of the scene, not a design field (set it in the scene file)"
+            ),
+            Some(_) => format!("`{field}` does not take a word a map can vary"),
+            None => format!("unknown field `{field}`"),
+        };
+        return fail(format!(
+            "{why}; the fields a map varies over words are: {list}"
+        ));
+    };
+    let (what, accepted) = accepted_words(f, registry);
+    for w in &axis.words {
+        if !accepted.contains(&w.as_str()) {
+            return fail(format!(
+                "`{w}` is not {what}: one of {}",
+                accepted.join(", ")
+            ));
+        }
+    }
+    Ok(f)
+}
+
 /// Checks that `field` may be varied on `base` (a validated switch spec): a known numeric
 /// key of a switch scene, and not in conflict with the scene's drive or counter-surface.
 /// The error (argument `vary`) says what to give.
@@ -281,6 +397,9 @@ pub fn check_field_as(
         let why = match keys::key(field) {
             Some(f) if !f.key.contains('.') => format!(
                 "`{field}` is a top-level setting of the scene, not a design field (set it in the scene file)"
+            ),
+            Some(f) if categorical(f) => format!(
+                "`{field}` is not a numeric key of a switch scene (it takes words: a map varies it as {field}=WORD,WORD,...)"
             ),
             Some(_) => format!("`{field}` is not a numeric key of a switch scene"),
             None => format!("unknown field `{field}`"),
@@ -482,8 +601,9 @@ pub struct MapResult {
 }
 
 /// The request of a map: the scene with the design settings, the grid of `vary` (each
-/// `FIELD=FROM:TO:lin|log:N`), the part of it `shard` names (`K/N`); checked before any
-/// point runs (errors name the arguments `vary`, `shard`).
+/// `FIELD=FROM:TO:lin|log:N`, or `FIELD=WORD,WORD,...` for a law name or a choice, see
+/// [`check_words`]), the part of it `shard` names (`K/N`); checked before any point runs
+/// (errors name the arguments `vary`, `shard`).
 pub fn map_request(
     scene: &Scene,
     registry: &LawRegistry,
@@ -507,8 +627,12 @@ pub fn map_request_with(
     let (base, spec) = base_spec(scene, registry, accuracy)?;
     let require = require.map(|t| requirement(t, &spec)).transpose()?;
     let grid = Grid::parse(vary)?;
-    for a in grid.axes() {
-        check_field(&a.field, &spec)?;
+    for (a, option) in grid.axes().iter().zip(vary) {
+        if a.is_categorical() {
+            check_words(a, option, registry)?;
+        } else {
+            check_field(&a.field, &spec)?;
+        }
     }
     let shard = shard.map(Shard::parse).transpose()?;
     Ok((
@@ -558,7 +682,7 @@ pub fn map_with(
     let done = Mutex::new(0u64);
     let map = design_sweep::run_map(
         request,
-        |values| ev.point(values),
+        |values| ev.point_at(values),
         |n, _| {
             if let Ok(mut d) = done.lock() {
                 // workers report out of order: the count only moves forward

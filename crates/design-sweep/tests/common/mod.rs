@@ -1,7 +1,7 @@
 //! Analytic evaluators with known stiction boundaries.
 #![allow(dead_code, missing_docs)]
 
-use design_sweep::{DesignPoint, PointError};
+use design_sweep::{DesignPoint, Level, PointError};
 
 /// A design point of the given ratio and restoring pressure.
 pub fn point(ratio: f64, restoring: f64) -> DesignPoint {
@@ -25,15 +25,20 @@ pub fn power(x0: f64, p: f64) -> impl Fn(f64) -> Result<DesignPoint, PointError>
     move |x| Ok(point((x0 / x).powf(p), x))
 }
 
+/// The number of axis `k` of a numeric grid point.
+pub fn num(values: &[(&str, Level)], k: usize) -> f64 {
+    values[k].1.number().expect("a numeric axis")
+}
+
 /// 2-D: ratio = (x0/x)^2 * (y/y0): boundary y = y0 (x/x0)^2.
-pub fn product(values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
-    let (x, y) = (values[0].1, values[1].1);
+pub fn product(values: &[(&str, Level)]) -> Result<DesignPoint, PointError> {
+    let (x, y) = (num(values, 0), num(values, 1));
     Ok(point((2e3 / x).powi(2) * (y / 1e-8), x))
 }
 
 /// 1-D: ratio = (x0/x)^1.5 with a few failing points and one out of domain.
-pub fn flaky(values: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
-    let x = values[0].1;
+pub fn flaky(values: &[(&str, Level)]) -> Result<DesignPoint, PointError> {
+    let x = num(values, 0);
     if (x - 500.0).abs() < 1e-9 {
         return Err(PointError::Failed("solver did not converge".into()));
     }
