@@ -211,8 +211,11 @@ def design_map(
 ) -> DesignMap:
     """A 1-D or 2-D map of the pull-out ratio after accommodation (phi x largest pull-out
     in Pa / K_s d0 in Pa; above 1 the switch sticks) over the grid of `vary`,
-    a list of the CLI's ``--vary`` strings ``"FIELD=FROM:TO:lin|log:N"`` (e.g.
-    ``["switch.k_s=1e9:1e11:log:8"]``; the first varies slowest). The points are those of
+    a list of the CLI's ``--vary`` strings: ``"FIELD=FROM:TO:lin|log:N"`` for a number
+    (e.g. ``["switch.k_s=1e9:1e11:log:8"]``; the first varies slowest), or
+    ``"FIELD=WORD,WORD,..."`` for a law name or a choice (e.g.
+    ``"contact.plasticity_law=etsion_kadin,kogut_etsion"``: each point's ``values`` then
+    holds the word). The points are those of
     ``stiction design map --vary ... --accuracy ...`` on the same scene, exactly: each
     point with ``.pull_out_ratio``, ``.sticks``, ``.closes``, ``.status``; ``to_json()``
     is the command's map.json.

@@ -17,17 +17,18 @@ Every worker must have this package installed.
 from __future__ import annotations
 
 import uuid
-from typing import Any, List, Optional, Sequence, Tuple
+from typing import Any, List, Optional, Sequence, Tuple, Union
 
 from . import _stiction
 
 
-def evaluate_point(base: str, values: Sequence[Tuple[str, float]]) -> tuple:
+def evaluate_point(base: str, values: Sequence[Tuple[str, Union[float, str]]]) -> tuple:
     """One design point, on a worker: `base` the plan's scene (TOML), `values` the
-    point's (field, value) pairs. Returns the answer the assembly takes."""
+    point's (field, value) pairs (a float, or the word of a categorical axis). Returns the
+    answer the assembly takes."""
     from . import _stiction as native  # imported on the worker
 
-    return native.design_point(base, [(str(k), float(v)) for k, v in values])
+    return native.design_point(base, [(str(k), v if isinstance(v, str) else float(v)) for k, v in values])
 
 
 def map_on_client(

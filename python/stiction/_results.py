@@ -612,7 +612,7 @@ class MapPoint(Record):
     fields are None where the point has no design (out of domain, failed)."""
 
     index: int  #: index in the grid (the first varied field varies slowest)
-    values: Dict[str, float]  #: the varied fields' values (SI)
+    values: Dict[str, Union[float, str]]  #: the varied fields' values (SI), a word on a categorical axis
     status: str  #: ok | does_not_close | out_of_domain | failed
     detail: Optional[str]  #: why, for out_of_domain and failed
     pull_out_ratio: Optional[float]  #: largest pull-out after accommodation / K_s d0 (> 1 sticks; 0: does not close)
@@ -638,7 +638,7 @@ class DesignMap(Record):
     format: str  #: "stiction-design-map"
     version: int
     accuracy: str  #: accuracy mode of the design points
-    grid: Dict[str, Any]  #: the axes: field, from, to, spacing, n, values
+    grid: Dict[str, Any]  #: the axes: field, from, to, spacing, n, values (a categorical axis: field, words, n)
     scene: Dict[str, Any]  #: the scene as run (design settings applied)
     shard: Optional[Dict[str, Any]]  #: this map's part K of N, for a shard
     requirement: Optional[str]  #: the second requirement (``contact_resistance<1e0``), if any
@@ -674,8 +674,12 @@ class DesignMap(Record):
         return np.asarray(cells, dtype=object)
 
     def values_of(self, field: str) -> np.ndarray:
-        """The values of a varied field at every point (SI), in index order."""
-        return np.asarray([p.values[field] for p in self.points], dtype=float)
+        """The values of a varied field at every point (SI), in index order: floats, or
+        the words (str, dtype object) of a categorical axis."""
+        cells = [p.values[field] for p in self.points]
+        if any(isinstance(c, str) for c in cells):
+            return np.asarray(cells, dtype=object)
+        return np.asarray(cells, dtype=float)
 
     def to_json(self) -> str:
         """map.json exactly as ``stiction design map`` writes it."""

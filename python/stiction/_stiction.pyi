@@ -173,11 +173,12 @@ def design_map_plan(
     accuracy: Optional[str] = None,
     shard: Optional[str] = None,
     require: Optional[str] = None,
-) -> Tuple[str, List[Tuple[int, List[Tuple[str, float]]]]]:
-    """(base scene TOML, [(index, [(field, value)])]) of a map, checked."""
+) -> Tuple[str, List[Tuple[int, List[Tuple[str, Union[float, str]]]]]]:
+    """(base scene TOML, [(index, [(field, value)])]) of a map, checked; a value is a
+    float, or the word of a categorical axis."""
 
 def design_point(
-    base: str, values: Sequence[Tuple[str, float]]
+    base: str, values: Sequence[Tuple[str, Union[float, str]]]
 ) -> Tuple[str, Optional[Dict[str, Any]], Optional[str], List[Tuple[str, str, bool]]]:
     """One design point as a worker evaluates it: (status, design, message, warnings)."""
 

@@ -174,3 +174,75 @@ def test_threshold_with_a_resistance_requirement_reports_the_window():
     lo, hi = req["window"][0]
     assert lo == pytest.approx(req["crossings"][0]["value"], rel=1e-3)
     assert hi == pytest.approx(t.critical_value, rel=1e-3)
+
+
+# ---------------------------------------------------------------- laws as an axis
+
+LAW_VARY = ["contact.plasticity_law=etsion_kadin,kogut_etsion", "switch.k_s=5e9:4e10:log:3"]
+
+
+@pytest.fixture(scope="module")
+def law_scene(spring_scene):
+    """The spring-driven switch with E* in eq 1, where the paper's spring is near the
+    stiction boundary and the two plasticity laws put it on either side."""
+    return spring_scene.with_values({"contact.yield_modulus": "composite"})
+
+
+@pytest.fixture(scope="module")
+def law_map(law_scene):
+    return stiction.design_map(law_scene, LAW_VARY, accuracy="fast")
+
+
+def test_a_law_axis_returns_the_words_and_is_the_command_lines(cli, law_scene, law_map, tmp_path):
+    m = law_map
+    assert [p.values["contact.plasticity_law"] for p in m.points] == ["etsion_kadin"] * 3 + ["kogut_etsion"] * 3
+    assert m.values_of("contact.plasticity_law").tolist() == ["etsion_kadin"] * 3 + ["kogut_etsion"] * 3
+    assert m.values_of("switch.k_s").dtype == float
+    assert m.grid["axes"][0] == {"field": "contact.plasticity_law", "words": ["etsion_kadin", "kogut_etsion"], "n": 2}
+    scene = tmp_path / "spring.toml"
+    scene.write_text(law_scene.to_toml())
+    out = tmp_path / "map"
+    p = cli.run("design", "map", "--scene", scene, "--accuracy", "fast", "--out", out,
+                "--vary", LAW_VARY[0], "--vary", LAW_VARY[1])
+    assert p.returncode == 0, p.stderr
+    assert m.to_json() == (out / "map.json").read_text()
+    assert m.to_csv() == (out / "map.csv").read_text()
+    assert m.to_svg() == (out / "map.svg").read_text()
+
+
+def test_a_law_axis_point_is_the_single_law_maps(law_scene, law_map):
+    for w, law in enumerate(["etsion_kadin", "kogut_etsion"]):
+        single = stiction.design_map(law_scene.with_values({"contact.plasticity_law": law}),
+                                     LAW_VARY[1], accuracy="fast")
+        for j, p in enumerate(single.points):
+            q = law_map.points[3 * w + j]
+            assert q.pull_out_ratio == p.pull_out_ratio and q.sticks == p.sticks
+            assert q.values["switch.k_s"] == p.values["switch.k_s"]
+    # Kogut-Etsion pulls out harder: at the middle spring one law is free, the other sticks
+    r = law_map.column("pull_out_ratio")
+    assert (r[3:] > r[:3]).all() and r[1] < 1 < r[4]
+
+
+def test_an_unknown_law_is_input_naming_the_word(law_scene):
+    with pytest.raises(stiction.InputError, match="kogut_etsoin") as e:
+        stiction.design_map(law_scene, ["contact.plasticity_law=etsion_kadin,kogut_etsoin"])
+    assert "etsion_kadin, kogut_etsion, elastic" in str(e.value)
+    with pytest.raises(stiction.InputError, match="takes numbers"):
+        stiction.design_map(law_scene, ["switch.k_s=soft,stiff"])
+
+
+def test_a_law_axis_on_a_process_pool_and_its_shards(law_scene, law_map):
+    with ProcessPoolExecutor(2) as pool:
+        m = stiction.design_map(law_scene, LAW_VARY, accuracy="fast", client=pool)
+    assert m.to_json() == law_map.to_json()
+    parts = [stiction.design_map(law_scene, LAW_VARY, accuracy="fast", shard=f"{k}/2") for k in (1, 2)]
+    assert stiction.design_merge(parts).to_json() == law_map.to_json()
+    other = stiction.design_map(law_scene, ["contact.plasticity_law=etsion_kadin,elastic", LAW_VARY[1]],
+                                accuracy="fast", shard="2/2")
+    with pytest.raises(stiction.InputError, match="the words of contact.plasticity_law"):
+        stiction.design_merge([parts[0], other])
+
+
+def test_the_dask_map_carries_the_words(dask_client, law_scene, law_map):
+    m = stiction.design_map(law_scene, LAW_VARY, accuracy="fast", client=dask_client)
+    assert m.to_json() == law_map.to_json()
