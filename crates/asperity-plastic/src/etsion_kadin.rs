@@ -228,6 +228,19 @@ impl EtsionKadin {
     }
 }
 
+/// delta_res/delta_max = [1 - omega^-0.28][1 - omega^-0.69] of eq 4 (Etsion, Kligerman &
+/// Kadin 2005), for omega = delta_max/delta_CP > 1; 0 at and below yield. One logarithm
+/// and two `exp_m1` (1 - omega^-a = -expm1(-a ln omega), exact near yield where the
+/// factors vanish) in place of two `powf`: the Kogut-Etsion family shares it, so both
+/// families' residual interference agree to the bit.
+pub(crate) fn residual_ratio(omega: f64) -> f64 {
+    if !(omega > 1.0) {
+        return 0.0;
+    }
+    let l = omega.ln();
+    ((-0.28 * l).exp_m1() * (-0.69 * l).exp_m1()).max(0.0)
+}
+
 impl PlasticityLaw for EtsionKadin {
     fn radius(&self) -> f64 {
         self.radius
@@ -248,11 +261,10 @@ impl PlasticityLaw for EtsionKadin {
                 extrapolated: false,
             };
         }
-        let r = self.delta_cp / delta_max;
         let omega = delta_max / self.delta_cp;
         PlasticState {
             delta_max,
-            delta_res: delta_max * (1.0 - r.powf(0.28)) * (1.0 - r.powf(0.69)),
+            delta_res: delta_max * residual_ratio(omega),
             r_res: self.radius * (1.0 + self.k_res * (omega - 1.0)),
             extrapolated: omega > FIT_RANGE_MAX,
         }
