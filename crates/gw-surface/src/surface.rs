@@ -1,8 +1,7 @@
 use crate::error::GwError;
 use crate::history::GwHistory;
 use contact_core::numeric::{
-    brent_from, expand_bracket, integrate, AdaptiveRule, Expansion, Integral, QuadTolerance,
-    Sample, Tolerance, NOISE,
+    brent_from, integrate, AdaptiveRule, Integral, QuadTolerance, Sample, Tolerance, NOISE,
 };
 use contact_core::{
     positive, AsperityHistory, AsperityModel, CoreError, Estimate, LawError, LengthScales, Path,
@@ -276,69 +275,29 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
 
     /// Lowest height where `g` (increasing in h) turns non-negative within [lo, hi];
     /// None if g < 0 everywhere there.
-    ///
-    /// The search starts at `guess` (clamped into the range) and steps away from it
-    /// geometrically, first by the guess's own miss |g(guess)| (g rises about one for one
-    /// with h for the edges searched here), until g changes sign; Brent then closes the
-    /// bracket. A good guess (the fixed-point step h - g(h) from a nearby height) leaves a
-    /// bracket of a few ulps of sigma_s to close; a poor one costs a few doublings. The
-    /// root is the same as from the whole range to Brent's tolerance.
     fn edge(
         &self,
         what: &'static str,
         mut g: impl FnMut(f64) -> Result<f64, GwError>,
         lo: f64,
         hi: f64,
-        guess: f64,
     ) -> Result<Option<f64>, GwError> {
-        let sigma = self.sigma_s();
-        let tol = Tolerance::absolute(1e-15 * sigma).with_max_iter(200);
-        let x0 = if guess.is_finite() {
-            guess.clamp(lo, hi)
-        } else {
-            lo
-        };
-        let g0 = g(x0)?;
-        let start = Sample { x: x0, f: g0 };
-        // the first step: the miss itself, a little more, and never below 1e-9 sigma_s
-        let first = (1.5 * g0.abs()).max(1e-9 * sigma);
-        let ok = |r: Result<f64, GwError>| r;
-        if g0 >= 0.0 {
-            if x0 <= lo {
-                return Ok(Some(lo));
-            }
-            // the root is at or below x0: step down
-            let found = expand_bracket(
-                what,
-                |h| ok(g(h)),
-                start,
-                (x0 - first).max(lo),
-                Expansion::Geometric(4.0),
-                lo,
-            )?;
-            match found {
-                // (above, below): g >= 0 at `above`, g < 0 at `below`
-                Some((above, below)) => brent_from(what, &mut g, below, above, tol).map(Some),
-                // g >= 0 down to lo
-                None => Ok(Some(lo)),
-            }
-        } else {
-            if x0 >= hi {
-                return Ok(None);
-            }
-            let found = expand_bracket(
-                what,
-                |h| ok(g(h)),
-                start,
-                (x0 + first).min(hi),
-                Expansion::Geometric(4.0),
-                hi,
-            )?;
-            match found {
-                Some((below, above)) => brent_from(what, &mut g, below, above, tol).map(Some),
-                None => Ok(None),
-            }
+        let g_hi = g(hi)?;
+        if g_hi < 0.0 {
+            return Ok(None);
         }
+        let g_lo = g(lo)?;
+        if g_lo >= 0.0 {
+            return Ok(Some(lo));
+        }
+        brent_from(
+            what,
+            g,
+            Sample { x: lo, f: g_lo },
+            Sample { x: hi, f: g_hi },
+            Tolerance::absolute(1e-15 * self.sigma_s()).with_max_iter(200),
+        )
+        .map(Some)
     }
 
     /// Break points of the height integral at separation d: the contact edge first, then
@@ -366,11 +325,7 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
             let j = self.law(h, d, a.jump_in(self.history_at(history, h)))?;
             Ok(h - excursion - j)
         };
-        // each search starts from the fixed-point step h - g(h) at a nearby height: exact
-        // where the law's jump or kink does not change with the height
-        let at = excursion.clamp(bottom, top);
-        let guess = at - jumped_in(at)?;
-        let mut edge = match self.edge("contact edge (jump-in)", jumped_in, bottom, top, guess)? {
+        let mut edge = match self.edge("contact edge (jump-in)", jumped_in, bottom, top)? {
             Some(e) => e,
             None => return Ok(None),
         };
@@ -380,9 +335,7 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
                 let j = self.law(h, d, a.jumps(hist))?;
                 Ok(h - d - j.jump_out)
             };
-            let at = d.clamp(bottom, top);
-            let guess = at - still_in(at)?;
-            match self.edge("contact edge (jump-out)", still_in, bottom, top, guess)? {
+            match self.edge("contact edge (jump-out)", still_in, bottom, top)? {
                 Some(e) => edge = edge.max(e),
                 None => return Ok(None),
             }
@@ -394,8 +347,7 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
         // (increasing in h for a surface loaded by flats).
         for b in a.plastic_breaks() {
             let y = |h: f64| -> Result<f64, GwError> { Ok(hist_eff(h).delta_max - b) };
-            let guess = edge - y(edge)?;
-            if let Some(h_y) = self.edge("yield onset height", y, edge, top, guess)? {
+            if let Some(h_y) = self.edge("yield onset height", y, edge, top)? {
                 points.push(h_y);
             }
         }
@@ -415,8 +367,7 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
                     .flatten()
                     .map_or(-self.sigma_s(), |x| h - d - x))
             };
-            let guess = edge - g(edge)?;
-            if let Some(h_k) = self.edge("kink height", g, edge, top, guess)? {
+            if let Some(h_k) = self.edge("kink height", g, edge, top)? {
                 points.push(h_k);
             }
         }
