@@ -270,7 +270,7 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
     /// yield lists delta_res first, `None` before yield (nothing bends there then).
     fn kinks(&self, history: AsperityHistory) -> Result<Vec<Option<f64>>, LawError> {
         let st = self.plasticity.state(history.delta_max);
-        let mut k = Vec::new();
+        let mut k = Vec::with_capacity(4);
         if self.plasticity.delta_cp().is_finite() {
             k.push((st.delta_res > 0.0).then_some(st.delta_res));
         }

@@ -244,7 +244,7 @@ impl KogutEtsion {
         if !(omega > 1.0) {
             return 0.0;
         }
-        ((1.0 - omega.powf(-0.28)) * (1.0 - omega.powf(-0.69))).max(0.0)
+        crate::etsion_kadin::residual_ratio(omega)
     }
 
     /// EKK's unloading exponent n = 1.5 omega^-0.0331 (1.5, Hertz, at and below yield).

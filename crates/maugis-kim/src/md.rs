@@ -427,7 +427,7 @@ impl MdCurve {
                 Ok(p)
             }
             // Between Delta_t and Delta_j the stable root lies below the turning point.
-            Some(u_t) => self.solve_contact(delta, u_t),
+            Some(u_t) => self.solve_below_turning(delta, u_t, turning.point.delta),
         }
     }
 
@@ -470,6 +470,61 @@ impl MdCurve {
             }
         }
         None
+    }
+
+    /// Delta(s) = delta on the stable part of the contact branch below the turning point,
+    /// Delta_t <= delta <= Delta_j (lambda > lambda_c): Newton's method in u = ln s kept
+    /// inside a bracket [lo, u_t] (Delta decreases in u there), started from the parabola
+    /// Delta ~ Delta_t + c (u - u_t)^2 through the turning point and the bracket's lower
+    /// end; a step leaving the bracket is a bisection. About 5 evaluations of the branch,
+    /// where a bracket search and Brent's method took 25; the same root to rounding.
+    fn solve_below_turning(&self, delta: f64, u_t: f64, delta_t: f64) -> Result<MdPoint, MkError> {
+        let l = self.lambda;
+        let tol = 4.0 * f64::EPSILON * delta.abs().max(1.0);
+        // the lower end of the bracket: Delta(lo) > delta, stepping down from u_t - 1
+        let mut step = 1.0;
+        let mut lo = u_t - step;
+        let mut c_lo = Contact::at(l, lo.exp());
+        while c_lo.delta <= delta {
+            step *= 2.0;
+            lo = u_t - step;
+            if lo < U_MIN {
+                return self.solve_contact(delta, u_t);
+            }
+            c_lo = Contact::at(l, lo.exp());
+        }
+        let mut hi = u_t;
+        let curvature = (c_lo.delta - delta_t) / (step * step);
+        let mut u = u_t - ((delta - delta_t).max(0.0) / curvature).sqrt();
+        if !(u > lo && u < hi) {
+            u = 0.5 * (lo + hi);
+        }
+        for _ in 0..MAX_ITER {
+            let c = Contact::at(l, u.exp());
+            let g = c.delta - delta;
+            if g.abs() <= tol {
+                return Ok(c.point(true));
+            }
+            if g > 0.0 {
+                lo = u;
+            } else {
+                hi = u;
+            }
+            let slope = c.d_delta_du(l);
+            let mut next = u - g / slope;
+            if !(slope < 0.0 && next > lo && next < hi) {
+                next = 0.5 * (lo + hi);
+            }
+            if (next - u).abs() <= 1e-15 * u.abs().max(1.0) || hi - lo <= 1e-15 * u.abs().max(1.0) {
+                return Ok(Contact::at(l, next.exp()).point(true));
+            }
+            u = next;
+        }
+        Err(CoreError::NoConvergence {
+            what: "Maugis-Dugdale Delta(s) = Delta below the turning point",
+            iterations: MAX_ITER,
+        }
+        .into())
     }
 
     /// Solve Delta(s) = delta for ln s <= u_top, where Delta decreases in s.
@@ -665,7 +720,7 @@ fn guide() -> &'static [f64] {
                             |u| Ok::<_, CoreError>(f(u)),
                             a,
                             b,
-                            Tolerance::absolute(1e-6).with_max_iter(MAX_ITER),
+                            Tolerance::absolute(1e-12).with_max_iter(MAX_ITER),
                         )
                         .ok()
                     })
@@ -675,16 +730,34 @@ fn guide() -> &'static [f64] {
     })
 }
 
-/// Interpolated ln s_t for lambda inside the guide table.
+/// Interpolated ln s_t for lambda inside the guide table: 4-point Lagrange (cubic, the
+/// stencil shifted inward at the ends), about 1e-8 in ln s away from lambda_c, where
+/// ln s_t grows without bound and the first bracket is widened.
 fn turning_guess(lambda: f64) -> Option<f64> {
     let x = (lambda.ln() - GUIDE_LN_LO) / (GUIDE_LN_HI - GUIDE_LN_LO) * (GUIDE_N - 1) as f64;
     if !(x >= 0.0 && x < (GUIDE_N - 1) as f64) {
         return None;
     }
     let g = guide();
-    let i = x as usize;
-    let u = g[i] + (g[i + 1] - g[i]) * (x - i as f64);
+    let (i0, w) = lagrange4(x, GUIDE_N);
+    let u: f64 = w.iter().zip(&g[i0..i0 + 4]).map(|(w, g)| w * g).sum();
     u.is_finite().then_some(u)
+}
+
+/// The first index and the weights of the 4-point Lagrange stencil at fractional grid
+/// position x on a grid of n >= 4 points (exact for cubics; shifted inward at the ends).
+fn lagrange4(x: f64, n: usize) -> (usize, [f64; 4]) {
+    let i0 = (x as usize).saturating_sub(1).min(n - 4);
+    let f = x - (i0 + 1) as f64;
+    (
+        i0,
+        [
+            -f * (f - 1.0) * (f - 2.0) / 6.0,
+            (f + 1.0) * (f - 1.0) * (f - 2.0) / 2.0,
+            -(f + 1.0) * f * (f - 2.0) / 2.0,
+            (f + 1.0) * f * (f - 1.0) / 6.0,
+        ],
+    )
 }
 
 /// Grid of the contact-solve guide: ln lambda and y = ln(Delta - Delta_j).
@@ -728,22 +801,8 @@ fn contact_guess(lambda: f64, above_junction: f64) -> Option<f64> {
     }
     let g = contact_guide();
     let at = |i: usize, j: usize| g[i * CG_Y.2 + j];
-    // first stencil index and the weights of the four points at fractional position x
-    let stencil = |x: f64, n: usize| -> (usize, [f64; 4]) {
-        let i0 = (x as usize).saturating_sub(1).min(n - 4);
-        let f = x - (i0 + 1) as f64;
-        (
-            i0,
-            [
-                -f * (f - 1.0) * (f - 2.0) / 6.0,
-                (f + 1.0) * (f - 1.0) * (f - 2.0) / 2.0,
-                -(f + 1.0) * f * (f - 2.0) / 2.0,
-                (f + 1.0) * f * (f - 1.0) / 6.0,
-            ],
-        )
-    };
-    let (i0, wx) = stencil(x, CG_L.2);
-    let (j0, wy) = stencil(y, CG_Y.2);
+    let (i0, wx) = lagrange4(x, CG_L.2);
+    let (j0, wy) = lagrange4(y, CG_Y.2);
     let mut u = 0.0;
     for (di, wi) in wx.iter().enumerate() {
         for (dj, wj) in wy.iter().enumerate() {
@@ -760,10 +819,11 @@ fn contact_guess(lambda: f64, above_junction: f64) -> Option<f64> {
     u.is_finite().then_some(u)
 }
 
-/// A bracket of width 2w around the guess g, widened a few times if needed.
+/// A bracket of width 2w around the guess g (w from 1e-6, the cubic guide's accuracy),
+/// widened eightfold up to six times if needed.
 fn tight_bracket(f: &dyn Fn(f64) -> f64, g: f64) -> Option<(Sample, Sample)> {
-    let mut w = 0.01;
-    for _ in 0..4 {
+    let mut w = 1e-6;
+    for _ in 0..7 {
         let (a, b) = (g - w, g + w);
         let (fa, fb) = (f(a), f(b));
         if fa <= 0.0 && fb > 0.0 {
