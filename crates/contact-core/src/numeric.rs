@@ -865,16 +865,42 @@ impl PanelNodes {
 /// 2004), with its exact integral over any sub-interval.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Interpolant {
+    /// The nodes mapped to about [-1, 1]: (x - centre) / half_width.
     x: Vec<f64>,
     y: Vec<f64>,
     w: Vec<f64>,
+    centre: f64,
+    half_width: f64,
     gl: GaussLegendre,
 }
 
 impl Interpolant {
     /// Through `points` (distinct x).
+    ///
+    /// Points whose x repeats an earlier one are left out (a panel refined to a few ulps,
+    /// where its nodes round onto each other, would otherwise give infinite weights), and
+    /// the barycentric weights are formed on the nodes mapped to [-1, 1], where
+    /// 1/prod(x_j - x_k) cannot underflow as it does on a panel a few ulps wide.
     pub fn new(points: &[(f64, f64)]) -> Self {
-        let x: Vec<f64> = points.iter().map(|p| p.0).collect();
+        let mut unique: Vec<(f64, f64)> = Vec::with_capacity(points.len());
+        for &p in points {
+            if !unique.iter().any(|q| q.0 == p.0) {
+                unique.push(p);
+            }
+        }
+        let points = &unique[..];
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.0), hi.max(p.0))
+            });
+        let centre = if lo.is_finite() && hi.is_finite() {
+            0.5 * (lo + hi)
+        } else {
+            0.0
+        };
+        let half_width = if hi > lo { 0.5 * (hi - lo) } else { 1.0 };
+        let x: Vec<f64> = points.iter().map(|p| (p.0 - centre) / half_width).collect();
         let y: Vec<f64> = points.iter().map(|p| p.1).collect();
         let w = (0..x.len())
             .map(|j| {
@@ -886,11 +912,19 @@ impl Interpolant {
             .collect();
         // degree n - 1: a Gauss rule of ceil(n/2) nodes integrates it exactly
         let gl = GaussLegendre::new(x.len().div_ceil(2).max(1));
-        Self { x, y, w, gl }
+        Self {
+            x,
+            y,
+            w,
+            centre,
+            half_width,
+            gl,
+        }
     }
 
     /// The polynomial at `t`.
     pub fn eval(&self, t: f64) -> f64 {
+        let t = (t - self.centre) / self.half_width;
         let (mut num, mut den) = (0.0, 0.0);
         for ((&xj, &yj), &wj) in self.x.iter().zip(&self.y).zip(&self.w) {
             if t == xj {
@@ -1359,6 +1393,38 @@ mod tests {
     use super::*;
 
     type R<T> = Result<T, CoreError>;
+
+    /// 14 nodes (eq 17's panels with 6-node halves) on a panel 8 ulps wide at x = -2.35e-8
+    /// (a panel refined to rounding): the nodes round onto 9 values, several twice. The
+    /// interpolant keeps one point per x, stays finite, and reproduces a linear function
+    /// of x there to rounding; the weights of the raw nodes were infinite.
+    #[test]
+    fn an_interpolant_on_a_panel_a_few_ulps_wide_stays_finite() {
+        let a = -2.35e-8_f64;
+        let ulp = a.abs() * f64::EPSILON;
+        let w = 8.0 * ulp;
+        let f = |x: f64| 3.0 + (x - a) / w;
+        let pts: Vec<(f64, f64)> = (0..14)
+            .map(|i| {
+                let x = a + w * (1.0 - (std::f64::consts::PI * i as f64 / 13.0).cos()) / 2.0;
+                (x, f(x))
+            })
+            .collect();
+        let distinct = {
+            let mut xs: Vec<f64> = pts.iter().map(|p| p.0).collect();
+            xs.dedup();
+            xs.len()
+        };
+        assert!(distinct < 14, "the test needs repeated nodes");
+        let p = Interpolant::new(&pts);
+        for &(x, y) in &pts {
+            let got = p.eval(x);
+            assert!(got.is_finite() && (got - y).abs() <= 1e-12, "{got} vs {y}");
+        }
+        let mid = p.eval(a + 0.5 * w);
+        assert!(mid.is_finite() && (mid - 3.5).abs() <= 0.2, "{mid}");
+        assert!(p.integral(a, a + w).is_finite());
+    }
 
     #[test]
     fn brent_reports_missing_bracket_and_closure_errors() {
