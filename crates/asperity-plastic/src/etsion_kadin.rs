@@ -230,17 +230,15 @@ impl EtsionKadin {
 
 /// delta_res/delta_max = [1 - omega^-0.28][1 - omega^-0.69] of eq 4 (Etsion, Kligerman &
 /// Kadin 2005), for omega = delta_max/delta_CP > 1; 0 at and below yield. One logarithm
-/// and two `exp` (omega^-a = exp(-a ln omega)) in place of two `powf`, a quarter of the
-/// cost (`exp_m1` would keep the relative precision of the vanishing factors just above
-/// yield but costs as much as `powf`; the absolute error, about 1e-16 delta_max, is the
-/// one the force sees). The Kogut-Etsion family shares it, so both families' residual
-/// interference agree to the bit.
+/// and two `exp_m1` (1 - omega^-a = -expm1(-a ln omega), exact near yield where the
+/// factors vanish) in place of two `powf`: the Kogut-Etsion family shares it, so both
+/// families' residual interference agree to the bit.
 pub(crate) fn residual_ratio(omega: f64) -> f64 {
     if !(omega > 1.0) {
         return 0.0;
     }
     let l = omega.ln();
-    ((1.0 - (-0.28 * l).exp()) * (1.0 - (-0.69 * l).exp())).max(0.0)
+    ((-0.28 * l).exp_m1() * (-0.69 * l).exp_m1()).max(0.0)
 }
 
 impl PlasticityLaw for EtsionKadin {

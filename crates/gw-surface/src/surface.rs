@@ -676,27 +676,9 @@ impl<M: AsperityModel + Sync> SurfaceLaw for GreenwoodWilliamson<M> {
 
     /// The deepest separation reached, where reloading turns into virgin loading (none for
     /// asperities that never yield: their loading does not depend on the history).
-    /// The deepest separation reached (reloading turns into virgin loading there), and
-    /// above it, for each plastic break b (yield onset delta_CP first), the separation
-    /// where the approach's contact edge crosses the height that yielded to b:
-    /// d = deepest + b - jump_in(delta_max = b). There the asperities that jump in change
-    /// from elastic to plastic ones, and p_L(d) has a kink the energy integral of eq 17
-    /// would otherwise resolve by bisection (about a sixth of its panels in accurate
-    /// mode on the paper's switch; docs/performance.md).
     fn kinks(&self, history: &GwHistory) -> Vec<f64> {
         match history.deepest() {
-            Some(d) if d.is_finite() && self.asperity.delta_cp().is_finite() => {
-                let mut k = vec![d];
-                for b in self.asperity.plastic_breaks() {
-                    if let Ok(j) = self.asperity.jump_in(AsperityHistory { delta_max: b }) {
-                        let x = d + b - j;
-                        if x.is_finite() && x > d {
-                            k.push(x);
-                        }
-                    }
-                }
-                k
-            }
+            Some(d) if d.is_finite() && self.asperity.delta_cp().is_finite() => vec![d],
             _ => Vec::new(),
         }
     }
