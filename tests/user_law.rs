@@ -94,7 +94,7 @@ fn a_user_law_with_its_parameters_runs_the_design_and_law_commands() {
     ]);
     let c = t["critical_value"]
         .as_f64()
-        .expect("a crossing in the range");
+        .unwrap_or_else(|| panic!("a crossing in the range: {t}"));
     assert_eq!(t["free_side"], "below", "{t}");
     for p in t["scan"].as_array().unwrap() {
         if p["status"] != "ok" {

@@ -302,3 +302,44 @@ fn load_share_beyond_counts_force_not_asperities() {
         0.0
     );
 }
+
+#[test]
+fn the_declared_yield_crossing_is_where_the_approach_edge_meets_the_yield_height() {
+    // A surface pressed to `deepest` yielded every asperity above deepest + delta_CP.
+    // Approaching again, the contact edge (the lowest height that jumps in, h - d =
+    // jump_in(h)) passes that height at d = deepest + delta_CP - jump_in(delta_CP):
+    // SurfaceLaw::kinks declares it, and there the edge is the yield height.
+    let gw = ru_surface(Quadrature::default());
+    let deepest = 0.4 * SIGMA;
+    let h = GwHistory::Flat { deepest };
+    let dcp = gw.asperity().delta_cp();
+    let kinks = gw.kinks(&h);
+    assert_eq!(kinks[0], deepest);
+    let j = gw
+        .asperity()
+        .jump_in(contact_core::AsperityHistory { delta_max: dcp })
+        .unwrap();
+    let x = deepest + dcp - j;
+    assert!(
+        kinks.iter().any(|&k| (k - x).abs() <= 1e-12 * SIGMA),
+        "{kinks:?} lacks {x}"
+    );
+    let edge = gw.breakpoints(x, &h, Path::Approach).unwrap().unwrap()[0];
+    assert!(
+        (edge - (deepest + dcp)).abs() <= 1e-9 * SIGMA,
+        "edge {edge} vs yield height {}",
+        deepest + dcp
+    );
+    // p_L is continuous through it (a kink, not a jump)
+    let p = |d: f64| gw.pressure(d, &h, Path::Approach).unwrap();
+    let eps = 1e-6 * SIGMA;
+    let (below, at, above) = (p(x - eps), p(x), p(x + eps));
+    assert!(
+        (below - at).abs() <= 1e-3 * at.abs(),
+        "{below} {at} {above}"
+    );
+    assert!(
+        (above - at).abs() <= 1e-3 * at.abs(),
+        "{below} {at} {above}"
+    );
+}
