@@ -345,51 +345,18 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
     });
     let root = SVGBackend::with_string(buf, (900, 620)).into_drawing_area();
     root.fill(&WHITE).map_err(plot_err)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, (FONT, 22))
-        .margin(15)
-        .x_label_area_size(50)
-        .y_label_area_size(85)
-        .build_cartesian_2d(xs.coord(), ys.coord())
-        .map_err(plot_err)?;
-    let xf = |t: &f64| xs.label(*t);
-    let yf = |t: &f64| ys.label(*t);
-    chart
-        .configure_mesh()
-        .x_desc(labels.axis_label(&axis.field))
-        .y_desc(if log_y {
-            "pull-out ratio (log scale)"
-        } else {
-            "pull-out ratio"
-        })
-        .x_label_formatter(&xf)
-        .y_label_formatter(&yf)
-        .label_style((FONT, 15))
-        .axis_desc_style((FONT, 16))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(plot_err)?;
-
-    let boundary = STICK.stroke_width(2);
-    chart
-        .draw_series(LineSeries::new(
-            [(xs.lo, to_y(1.0)), (xs.hi, to_y(1.0))],
-            boundary,
-        ))
-        .map_err(plot_err)?
-        .label("ratio = 1: sticks above")
-        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], boundary));
+    let mut chart = ratio_frame(
+        &root,
+        title,
+        (&xs, &ys, log_y),
+        labels.axis_label(&axis.field),
+        "ratio = 1: sticks above",
+    )?;
 
     // the curve, broken where a point has no positive ratio (none between words: they
     // have no order)
     let categorical = axis.is_categorical();
-    let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-    for (x, p) in &pts {
-        match p.ratio().filter(|r| *r > 0.0) {
-            Some(r) => runs.last_mut().expect("non-empty").push((*x, to_y(r))),
-            None => runs.push(Vec::new()),
-        }
-    }
+    let mut runs = positive_runs(&pts, to_y);
     let line = BLACK.stroke_width(2);
     if categorical {
         runs.clear();
@@ -466,6 +433,66 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
     root.present().map_err(plot_err)
 }
 
+/// The frame both ratio plots share: the title, the axes (`scales`: x, y, and whether y
+/// is log10 of the ratio), the mesh with its labels, and the line ratio = 1 with
+/// `boundary_label` in the legend.
+fn ratio_frame<'a, 'b>(
+    root: &'a DrawingArea<SVGBackend<'b>, plotters::coord::Shift>,
+    title: String,
+    (xs, ys, log_y): (&Scale, &Scale, bool),
+    x_desc: String,
+    boundary_label: &str,
+) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticked, Ticked>>, DesignError> {
+    let mut chart = ChartBuilder::on(root)
+        .caption(title, (FONT, 22))
+        .margin(15)
+        .x_label_area_size(50)
+        .y_label_area_size(85)
+        .build_cartesian_2d(xs.coord(), ys.coord())
+        .map_err(plot_err)?;
+    let xf = |t: &f64| xs.label(*t);
+    let yf = |t: &f64| ys.label(*t);
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(if log_y {
+            "pull-out ratio (log scale)"
+        } else {
+            "pull-out ratio"
+        })
+        .x_label_formatter(&xf)
+        .y_label_formatter(&yf)
+        .label_style((FONT, 15))
+        .axis_desc_style((FONT, 16))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(plot_err)?;
+    let boundary = STICK.stroke_width(2);
+    let one = if log_y { 0.0 } else { 1.0 };
+    chart
+        .draw_series(LineSeries::new([(xs.lo, one), (xs.hi, one)], boundary))
+        .map_err(plot_err)?
+        .label(boundary_label)
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], boundary));
+    Ok(chart)
+}
+
+/// The runs of consecutive points with a positive ratio, as (plotted x, plotted y): a
+/// curve is broken where a point has none.
+fn positive_runs(
+    pts: &[(f64, &crate::map::MapPoint)],
+    to_y: impl Fn(f64) -> f64,
+) -> Vec<Vec<(f64, f64)>> {
+    let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+    for (x, p) in pts {
+        match p.ratio().filter(|r| *r > 0.0) {
+            Some(r) => runs.last_mut().expect("non-empty").push((*x, to_y(r))),
+            None => runs.push(Vec::new()),
+        }
+    }
+    runs
+}
+
 /// Colours of the words of a categorical axis, in order (Tableau 10 without its red, which
 /// draws the line ratio = 1); more words than colours cycle.
 const WORD_COLOURS: [RGBColor; 9] = [
@@ -525,52 +552,19 @@ fn draw_by_word(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), Desi
     });
     let root = SVGBackend::with_string(buf, (900, 620)).into_drawing_area();
     root.fill(&WHITE).map_err(plot_err)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, (FONT, 22))
-        .margin(15)
-        .x_label_area_size(50)
-        .y_label_area_size(85)
-        .build_cartesian_2d(xs.coord(), ys.coord())
-        .map_err(plot_err)?;
-    let xf = |t: &f64| xs.label(*t);
-    let yf = |t: &f64| ys.label(*t);
-    chart
-        .configure_mesh()
-        .x_desc(labels.axis_label(&num.field))
-        .y_desc(if log_y {
-            "pull-out ratio (log scale)"
-        } else {
-            "pull-out ratio"
-        })
-        .x_label_formatter(&xf)
-        .y_label_formatter(&yf)
-        .label_style((FONT, 15))
-        .axis_desc_style((FONT, 16))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(plot_err)?;
-
-    let boundary = STICK.stroke_width(2);
-    chart
-        .draw_series(LineSeries::new(
-            [(xs.lo, to_y(1.0)), (xs.hi, to_y(1.0))],
-            boundary,
-        ))
-        .map_err(plot_err)?
-        .label("ratio = 1: sticks above (filled: sticks, open: free)")
-        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], boundary));
+    let mut chart = ratio_frame(
+        &root,
+        title,
+        (&xs, &ys, log_y),
+        labels.axis_label(&num.field),
+        "ratio = 1: sticks above (filled: sticks, open: free)",
+    )?;
 
     for (w, pts) in curves.iter().enumerate() {
         let colour = WORD_COLOURS[w % WORD_COLOURS.len()];
         let line = colour.stroke_width(2);
         // the curve, broken where a point has no positive ratio
-        let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-        for (x, p) in pts {
-            match p.ratio().filter(|r| *r > 0.0) {
-                Some(r) => runs.last_mut().expect("non-empty").push((*x, to_y(r))),
-                None => runs.push(Vec::new()),
-            }
-        }
+        let runs = positive_runs(pts, to_y);
         let label = format!("{} = {}", cat.field, cat.words[w]);
         let mut labelled = false;
         for run in runs.iter().filter(|r| !r.is_empty()) {

@@ -10,6 +10,19 @@ use std::fmt::Write;
 /// Failed points listed by name in a table (the rest are counted).
 const LISTED_FAILURES: usize = 10;
 
+/// One crossing of ratio = 1 along `field`: where, between which grid values, the free
+/// side and the kind of crossing.
+fn crossing_text(field: &str, unit: Option<&str>, p: &crate::BoundaryPoint) -> String {
+    format!(
+        "{field} ~ {} (between {} and {}), free {}, {}",
+        with_unit(p.value, 4, unit),
+        fmt_sig(p.between[0], 6),
+        fmt_sig(p.between[1], 6),
+        p.free_side.word(),
+        p.kind.word()
+    )
+}
+
 fn with_unit(x: f64, digits: usize, unit: Option<&str>) -> String {
     match unit {
         Some(u) => format!("{} {u}", fmt_sig(x, digits)),
@@ -351,19 +364,7 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
             );
         }
         for p in b {
-            row(
-                &mut s,
-                "boundary",
-                format!(
-                    "{} ~ {} (between {} and {}), free {}, {}",
-                    a.field,
-                    with_unit(p.value, 4, unit),
-                    fmt_sig(p.between[0], 6),
-                    fmt_sig(p.between[1], 6),
-                    p.free_side.word(),
-                    p.kind.word()
-                ),
-            );
+            row(&mut s, "boundary", crossing_text(&a.field, unit, &p));
         }
     } else if g.has_categorical() {
         let by_word = map.boundary_by_word();
@@ -390,19 +391,8 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
                 );
             }
             for p in b.crossings {
-                row(
-                    &mut s,
-                    "boundary",
-                    format!(
-                        "{at_word}: {} ~ {} (between {} and {}), free {}, {}",
-                        num.field,
-                        with_unit(p.value, 4, unit),
-                        fmt_sig(p.between[0], 6),
-                        fmt_sig(p.between[1], 6),
-                        p.free_side.word(),
-                        p.kind.word()
-                    ),
-                );
+                let text = crossing_text(&num.field, unit, &p);
+                row(&mut s, "boundary", format!("{at_word}: {text}"));
             }
         }
     } else {

@@ -325,11 +325,7 @@ fn the_plot_draws_one_curve_per_word_and_labels_the_words() {
     let map = run(&["switch.k_s=1e3:1e4:log:9", LAWS], None);
     let svg = map.to_svg(&labels()).unwrap();
     let doc = roxmltree::Document::parse(&svg).expect("well-formed SVG");
-    let texts: Vec<&str> = doc
-        .descendants()
-        .filter(|n| n.has_tag_name("text"))
-        .filter_map(|n| n.text().map(str::trim))
-        .collect();
+    let texts = common::svg_texts(&doc);
     for w in ["etsion_kadin", "kogut_etsion", "elastic"] {
         assert!(
             texts.contains(&format!("contact.plasticity_law = {w}").as_str()),
@@ -357,11 +353,7 @@ fn the_plot_draws_one_curve_per_word_and_labels_the_words() {
     // 1-D over the words: the words are the tick labels, no line joins them
     let svg = run(&[LAWS], None).to_svg(&labels()).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();
-    let texts: Vec<&str> = doc
-        .descendants()
-        .filter(|n| n.has_tag_name("text"))
-        .filter_map(|n| n.text().map(str::trim))
-        .collect();
+    let texts = common::svg_texts(&doc);
     for w in ["etsion_kadin", "kogut_etsion", "elastic"] {
         assert!(texts.contains(&w), "{w}: {texts:?}");
     }
@@ -379,11 +371,7 @@ fn the_plot_draws_one_curve_per_word_and_labels_the_words() {
     assert!(map.boundary_2d().is_empty() && map.boundary_by_word().is_empty());
     let svg = map.to_svg(&labels()).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();
-    let texts: Vec<&str> = doc
-        .descendants()
-        .filter(|n| n.has_tag_name("text"))
-        .filter_map(|n| n.text().map(str::trim))
-        .collect();
+    let texts = common::svg_texts(&doc);
     assert!(
         texts.contains(&"bounded") && texts.contains(&"elastic"),
         "{texts:?}"

@@ -151,11 +151,7 @@ fn one_d_svg_with_a_log_grid_is_well_formed() {
     });
     let svg = map.to_svg(&labels().with_title("k_s sweep")).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();
-    let texts: Vec<&str> = doc
-        .descendants()
-        .filter(|n| n.has_tag_name("text"))
-        .filter_map(|n| n.text().map(str::trim))
-        .collect();
+    let texts = common::svg_texts(&doc);
     assert!(texts.contains(&"k_s sweep"));
     assert!(texts.contains(&"pull-out ratio (log scale)"), "{texts:?}");
     // decade tick labels on the log x axis and the log ratio axis

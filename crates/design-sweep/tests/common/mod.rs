@@ -55,3 +55,11 @@ pub fn flaky(values: &[(&str, Level)]) -> Result<DesignPoint, PointError> {
     }
     Ok(point((1e3 / x).powf(1.5), x))
 }
+
+/// The trimmed text of every `<text>` element of an SVG document.
+pub fn svg_texts<'a>(doc: &'a roxmltree::Document) -> Vec<&'a str> {
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .filter_map(|n| n.text().map(str::trim))
+        .collect()
+}
