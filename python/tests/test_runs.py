@@ -9,20 +9,23 @@ import pytest
 import stiction
 
 # the paper's switch (Fig 4) in the fast mode, recorded from `stiction switch --accuracy
-# fast --format json`: pull-out pressure (Pa) of cycles 1-10 and d_e (m) of cycle 1
+# fast --format json`: pull-out pressure (Pa) of cycles 1-10 and d_e (m) of cycle 1.
+# A regression record of the binding against the command line, bit for bit; rerecorded
+# when the numerics change on purpose (last: issue 27's declared yield crossings, which
+# moved them by at most 5e-8 relative, the fast mode's target being 1e-4).
 PAPER_FAST_PULL_OUTS = [
-    1810878.5721288698,
-    2245376.6540812594,
-    2381125.4834568286,
-    2424907.791702559,
-    2439154.7658682317,
-    2443803.6791782584,
-    2445322.016291853,
-    2445818.0499289054,
-    2445980.117157652,
-    2446033.070420503,
+    1810878.5721443929,
+    2245376.682201352,
+    2381125.560067076,
+    2424907.8913753754,
+    2439154.87476203,
+    2443803.7915646713,
+    2445322.1299688458,
+    2445818.164075644,
+    2445980.231473509,
+    2446033.1847967077,
 ]
-PAPER_FAST_D_E_1 = 9.624076812442269e-09
+PAPER_FAST_D_E_1 = 9.624076812409263e-09
 
 
 @pytest.fixture(scope="module")
