@@ -704,30 +704,28 @@ const GUIDE_N: usize = 512;
 /// ln s of the turning point on a grid of ln lambda (lambda > lambda_c), built once per
 /// process by the wide bracket search (about 2 ms). It only seeds the bracket: the turning
 /// point is still solved to 1e-14 in ln s, so results do not depend on the table.
+static TURNING_GUIDE: OnceLock<Vec<f64>> = OnceLock::new();
+
+/// ln s_t at grid point `i` of the turning-point guide (NaN where the search fails).
+fn turning_guide_entry(i: usize) -> f64 {
+    let l = (GUIDE_LN_LO + (GUIDE_LN_HI - GUIDE_LN_LO) * i as f64 / (GUIDE_N - 1) as f64).exp();
+    let f = |u: f64| Contact::at(l, u.exp()).d_delta_sign(l);
+    bracket_sign_change(&f, 0.0, U_MIN, U_MAX)
+        .and_then(|(a, b)| {
+            brent_from(
+                "turning guide",
+                |u| Ok::<_, CoreError>(f(u)),
+                a,
+                b,
+                Tolerance::absolute(1e-12).with_max_iter(MAX_ITER),
+            )
+            .ok()
+        })
+        .unwrap_or(f64::NAN)
+}
+
 fn guide() -> &'static [f64] {
-    static GUIDE: OnceLock<Vec<f64>> = OnceLock::new();
-    GUIDE.get_or_init(|| {
-        (0..GUIDE_N)
-            .map(|i| {
-                let l = (GUIDE_LN_LO
-                    + (GUIDE_LN_HI - GUIDE_LN_LO) * i as f64 / (GUIDE_N - 1) as f64)
-                    .exp();
-                let f = |u: f64| Contact::at(l, u.exp()).d_delta_sign(l);
-                bracket_sign_change(&f, 0.0, U_MIN, U_MAX)
-                    .and_then(|(a, b)| {
-                        brent_from(
-                            "turning guide",
-                            |u| Ok::<_, CoreError>(f(u)),
-                            a,
-                            b,
-                            Tolerance::absolute(1e-12).with_max_iter(MAX_ITER),
-                        )
-                        .ok()
-                    })
-                    .unwrap_or(f64::NAN)
-            })
-            .collect()
-    })
+    TURNING_GUIDE.get_or_init(|| (0..GUIDE_N).map(turning_guide_entry).collect())
 }
 
 /// Interpolated ln s_t for lambda inside the guide table: 4-point Lagrange (cubic, the
@@ -767,24 +765,55 @@ const CG_Y: (f64, f64, usize) = (-14.0, 10.0, 61);
 /// ln s of the contact-branch solution on a grid of (ln lambda, ln(Delta - Delta_j)),
 /// built once per process by the bracketed solver (about 3000 solves, a few ms). Like the
 /// turning-point guide it only seeds Newton's method; results are solved to rounding.
+static CONTACT_GUIDE: OnceLock<Vec<f64>> = OnceLock::new();
+
+/// Row `i` (one lambda) of the contact-solve guide (NaN where a solve fails).
+fn contact_guide_row(i: usize) -> Vec<f64> {
+    let l = (CG_L.0 + (CG_L.1 - CG_L.0) * i as f64 / (CG_L.2 - 1) as f64).exp();
+    let c = MdCurve::new(l).expect("grid lambda is valid");
+    let dj = c.junction().delta;
+    (0..CG_Y.2)
+        .map(|j| {
+            let y = CG_Y.0 + (CG_Y.1 - CG_Y.0) * j as f64 / (CG_Y.2 - 1) as f64;
+            c.solve_contact(dj + y.exp(), U_MAX)
+                .map_or(f64::NAN, |p| p.s.ln())
+        })
+        .collect()
+}
+
 fn contact_guide() -> &'static [f64] {
-    static GUIDE: OnceLock<Vec<f64>> = OnceLock::new();
-    GUIDE.get_or_init(|| {
-        let mut v = Vec::with_capacity(CG_L.2 * CG_Y.2);
-        for i in 0..CG_L.2 {
-            let l = (CG_L.0 + (CG_L.1 - CG_L.0) * i as f64 / (CG_L.2 - 1) as f64).exp();
-            let c = MdCurve::new(l).expect("grid lambda is valid");
-            let dj = c.junction().delta;
-            for j in 0..CG_Y.2 {
-                let y = CG_Y.0 + (CG_Y.1 - CG_Y.0) * j as f64 / (CG_Y.2 - 1) as f64;
-                let u = c
-                    .solve_contact(dj + y.exp(), U_MAX)
-                    .map_or(f64::NAN, |p| p.s.ln());
-                v.push(u);
-            }
-        }
-        v
-    })
+    CONTACT_GUIDE.get_or_init(|| (0..CG_L.2).flat_map(contact_guide_row).collect())
+}
+
+/// Builds the solver's two guide tables now, their rows spread over the cores
+/// ([`contact_core::par`]), instead of on one thread at the first solve that needs them
+/// (about 18 M instructions, a few ms of a short run). Optional: the tables hold the same
+/// values either way and only seed the solves, so no result depends on whether or when
+/// this is called. For a front end to call once before parallel work starts; a call
+/// after the tables exist returns at once.
+///
+/// ```
+/// maugis_kim::md::prepare_tables();
+/// let c = maugis_kim::MdCurve::new(2.0)?;
+/// assert!(c.force(10.0, contact_core::Path::Approach)? > 0.0);
+/// # Ok::<(), maugis_kim::MkError>(())
+/// ```
+pub fn prepare_tables() {
+    if TURNING_GUIDE.get().is_some() && CONTACT_GUIDE.get().is_some() {
+        return;
+    }
+    let idx = |n: usize| (0..n).collect::<Vec<usize>>();
+    let (turning, contact) = contact_core::par::join(
+        || contact_core::par::map(&idx(GUIDE_N), |&i| Ok::<_, ()>(turning_guide_entry(i))),
+        || contact_core::par::map(&idx(CG_L.2), |&i| Ok::<_, ()>(contact_guide_row(i))),
+    );
+    // another thread may have built one meanwhile: the values are the same
+    if let Ok(t) = turning {
+        let _ = TURNING_GUIDE.set(t);
+    }
+    if let Ok(c) = contact {
+        let _ = CONTACT_GUIDE.set(c.into_iter().flatten().collect());
+    }
 }
 
 /// Estimate of ln s for lambda and Delta - Delta_j > 0, inside the guide: 4 x 4-point
@@ -804,9 +833,11 @@ fn contact_guess(lambda: f64, above_junction: f64) -> Option<f64> {
     let (i0, wx) = lagrange4(x, CG_L.2);
     let (j0, wy) = lagrange4(y, CG_Y.2);
     let mut u = 0.0;
+    // the 4 x 4 stencil as four row slices: one bounds check per row
     for (di, wi) in wx.iter().enumerate() {
-        for (dj, wj) in wy.iter().enumerate() {
-            u += wi * wj * at(i0 + di, j0 + dj);
+        let start = (i0 + di) * CG_Y.2 + j0;
+        for (wj, gij) in wy.iter().zip(&g[start..start + 4]) {
+            u += wi * wj * gij;
         }
     }
     if u.is_finite() {

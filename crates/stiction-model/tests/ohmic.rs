@@ -370,3 +370,52 @@ fn a_requirement_the_scene_cannot_compute_is_refused_by_name() {
     .to_string();
     assert!(e.contains("unknown quantity"), "{e}");
 }
+
+/// A soft Pt-Au film (E = 90 GPa, S_Y = 320 MPa) with eq 12 as printed: after a few
+/// cycles the impacts stop short of the deepest one and every later cycle repeats the one
+/// before it. Its contact states are solved once and shared (`contact_states`); the shared
+/// state must be the one a run solving that cycle alone (`last_cycle`) finds, to the bit.
+#[test]
+fn a_repeated_cycle_shares_the_contact_state_solved_for_it_alone() {
+    let soft = |state: &str| {
+        let mut s = switch_scene(&[
+            ("accuracy", "fast"),
+            ("cycles", "12"),
+            ("contact_state", state),
+            ("contact.youngs_modulus", "90e9"),
+            ("contact.poisson_ratio", "0.42"),
+            ("contact.yield_stress", "320e6"),
+            ("contact.radius", "2e-6"),
+            ("contact.work_of_adhesion", "0.08"),
+            ("contact.z0", "0.2e-9"),
+            ("contact.yield_modulus", "composite"),
+            ("surface.sigma_s", "2.2e-8"),
+            ("surface.asperity_density", "3e12"),
+            ("switch.film_thickness", "0.6e-6"),
+            ("switch.contact_area_fraction", "0.02"),
+        ]);
+        s.set_text("until_accommodated", "false").unwrap();
+        // the spring given, the impact energy derived from it
+        s.remove("switch.impact_energy");
+        s.set_text("switch.k_s", "2e9").unwrap();
+        run(&s).1
+    };
+    let every = soft("every_cycle");
+    let last = soft("last_cycle");
+    let n = every.cycles.len();
+    assert_eq!(n, 12);
+    // the scene does what the test needs: its last cycle repeats the one before
+    let (a, b) = (&every.cycles[n - 2], &every.cycles[n - 1]);
+    assert!(
+        !b.deepened && a.d_e.to_bits() == b.d_e.to_bits(),
+        "{} {}",
+        a.d_e,
+        b.d_e
+    );
+    let json = |c: &stiction_model::switch::CycleResult| {
+        serde_json::to_string(&(&c.hold, c.hold_status, &c.end_of_impact)).unwrap()
+    };
+    assert!(every.cycles.iter().all(|c| c.hold_status != "not_computed"));
+    assert_eq!(json(&every.cycles[n - 1]), json(&last.cycles[n - 1]));
+    assert_eq!(json(&every.cycles[n - 2]), json(&every.cycles[n - 1]));
+}
