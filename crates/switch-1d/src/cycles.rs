@@ -3,7 +3,8 @@ use contact_core::numeric::{
     brent_from, geomspace, integrate_panels_par, linspace, refine_minima_par, AdaptiveRule,
     GaussLegendre, Interpolant, PanelNodes, QuadTolerance, Sample, Tolerance, NOISE,
 };
-use contact_core::{par, positive, CoreError, LengthScales, Path, SurfaceLaw};
+use contact_core::{par, positive, CoreError, Estimate, LengthScales, Path, SurfaceLaw};
+use std::collections::HashMap;
 use std::sync::Mutex;
 
 /// One point of a pressure curve: separation d (m), pressure (Pa, compressive > 0).
@@ -84,14 +85,37 @@ struct Approach<'a, S: SurfaceLaw> {
     history: &'a S::History,
     /// (d, error estimate) of every evaluation, in any order (they run in parallel).
     errors: Mutex<Vec<(f64, f64)>>,
+    /// Every pressure evaluated for this end of impact, by the bits of d: a re-solve with
+    /// a tighter energy integral starts on the same panels, whose nodes it need not
+    /// evaluate again (the same values, so the same result to the bit).
+    memo: &'a Memo,
 }
+
+/// Approach pressures by the bits of the separation.
+type Memo = Mutex<HashMap<u64, Estimate>>;
 
 impl<S: SurfaceLaw> Approach<'_, S> {
     fn p(&self, d: f64) -> Result<f64, SwitchError> {
-        let e = self
-            .surface
-            .pressure_estimate(d, self.history, Path::Approach)?;
-        // a poisoned lock only follows a panic elsewhere; the list is still whole
+        // a poisoned lock only follows a panic elsewhere; the map and list are still whole
+        let known = self
+            .memo
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .get(&d.to_bits())
+            .copied();
+        let e = match known {
+            Some(e) => e,
+            None => {
+                let e = self
+                    .surface
+                    .pressure_estimate(d, self.history, Path::Approach)?;
+                self.memo
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .insert(d.to_bits(), e);
+                e
+            }
+        };
         self.errors
             .lock()
             .unwrap_or_else(|e| e.into_inner())
@@ -162,7 +186,8 @@ fn end_of_impact_near<S: SurfaceLaw>(
         scales,
         guess,
     };
-    let solve = |tighten| solve_eq17(surface, history, &balance, tighten);
+    let memo = Memo::default();
+    let solve = |tighten| solve_eq17(surface, history, &balance, tighten, &memo);
     let mut end = solve(tighten)?;
     // the energy tolerance assumed a typical depth below the first touch: tighten by what
     // the error estimate says, twice at most
@@ -190,6 +215,7 @@ fn solve_eq17<S: SurfaceLaw>(
     history: &S::History,
     balance: &Balance,
     tighten: f64,
+    memo: &Memo,
 ) -> Result<EndOfImpact, SwitchError> {
     let Balance {
         energy,
@@ -219,6 +245,7 @@ fn solve_eq17<S: SurfaceLaw>(
         surface,
         history,
         errors: Mutex::new(Vec::new()),
+        memo,
     };
     let integral = |ap: &Approach<S>, lo: f64, hi: f64| {
         let mut breaks = vec![lo];

@@ -272,3 +272,81 @@ fn an_energy_the_surface_cannot_absorb_is_an_error() {
     };
     assert!(run_cycles(&gw, gw.virgin(), bad, quick(1), &mut |_| {}).is_err());
 }
+
+/// A surface that reports every approach pressure's error 1e8 times larger than
+/// its quadrature's, and logs the separations it is asked for. Its d_e estimate is then
+/// dominated by the pressures' own errors, which no tighter energy integral removes, so
+/// eq 17 is re-solved twice (the most it is) on the same panels.
+struct Pessimist<'a, S> {
+    inner: &'a S,
+    asked: std::sync::Mutex<Vec<u64>>,
+}
+
+impl<S: SurfaceLaw> SurfaceLaw for Pessimist<'_, S> {
+    type History = S::History;
+    fn virgin(&self) -> S::History {
+        self.inner.virgin()
+    }
+    fn pressure_estimate(
+        &self,
+        d: f64,
+        history: &S::History,
+        path: Path,
+    ) -> Result<contact_core::Estimate, contact_core::LawError> {
+        if path == Path::Approach {
+            self.asked.lock().unwrap().push(d.to_bits());
+        }
+        let e = self.inner.pressure_estimate(d, history, path)?;
+        Ok(contact_core::Estimate {
+            value: e.value,
+            error: 1e8 * e.error.max(1e-12 * e.value.abs()),
+        })
+    }
+    fn load(&self, history: &S::History, d: f64) -> S::History {
+        self.inner.load(history, d)
+    }
+    fn reach(&self, history: &S::History, path: Path) -> Result<f64, contact_core::LawError> {
+        self.inner.reach(history, path)
+    }
+    fn length_scales(
+        &self,
+        history: &S::History,
+    ) -> Result<contact_core::LengthScales, contact_core::LawError> {
+        self.inner.length_scales(history)
+    }
+    fn kinks(&self, history: &S::History) -> Vec<f64> {
+        self.inner.kinks(history)
+    }
+}
+
+/// eq 17's re-solves with a tighter energy integral start on the panels of the solve
+/// before, and each approach pressure is evaluated once per end of impact: the re-solves
+/// reuse the values (the same d, the same bits) instead of evaluating them again.
+#[test]
+fn a_re_solve_of_eq_17_evaluates_no_separation_twice() {
+    let gw = plastic(YieldModulus::AsPrinted);
+    let p = Pessimist {
+        inner: &gw,
+        asked: std::sync::Mutex::new(Vec::new()),
+    };
+    let fast = Precision {
+        d_e: 1e-5,
+        ..Precision::default()
+    };
+    let end = end_of_impact(&p, &p.virgin(), 0.5, FILM, fast).unwrap();
+    // the estimate stays above the target: the solve was repeated (twice)
+    assert!(end.error > fast.d_e * SIGMA, "{:e}", end.error);
+    let mut asked = p.asked.into_inner().unwrap();
+    let n = asked.len();
+    asked.sort_unstable();
+    asked.dedup();
+    assert_eq!(
+        asked.len(),
+        n,
+        "{} of {n} approach pressures asked twice",
+        n - asked.len()
+    );
+    // and the answer is the one of the plain surface
+    let plain = end_of_impact(&gw, &gw.virgin(), 0.5, FILM, fast).unwrap();
+    assert!((end.d_e - plain.d_e).abs() <= fast.d_e * SIGMA);
+}
