@@ -44,16 +44,3 @@ pub fn join<A: Send, B: Send>(
 ) -> (A, B) {
     (a(), b())
 }
-
-/// Whether the caller runs on a worker of the thread pool: work started from here is
-/// already inside a parallel task.
-#[cfg(feature = "parallel")]
-pub fn on_worker() -> bool {
-    rayon::current_thread_index().is_some()
-}
-
-/// Whether the caller runs on a worker of the thread pool: never without `parallel`.
-#[cfg(not(feature = "parallel"))]
-pub fn on_worker() -> bool {
-    false
-}

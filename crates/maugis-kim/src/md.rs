@@ -785,37 +785,6 @@ fn contact_guide() -> &'static [f64] {
     CONTACT_GUIDE.get_or_init(|| (0..CG_L.2).flat_map(contact_guide_row).collect())
 }
 
-/// Builds the solver's two guide tables now, their rows spread over the cores
-/// ([`contact_core::par`]), instead of on one thread at the first solve that needs them
-/// (about 18 M instructions, a few ms of a short run). Optional: the tables hold the same
-/// values either way and only seed the solves, so no result depends on whether or when
-/// this is called. For a front end to call once before parallel work starts; a call
-/// after the tables exist returns at once.
-///
-/// ```
-/// maugis_kim::md::prepare_tables();
-/// let c = maugis_kim::MdCurve::new(2.0)?;
-/// assert!(c.force(10.0, contact_core::Path::Approach)? > 0.0);
-/// # Ok::<(), maugis_kim::MkError>(())
-/// ```
-pub fn prepare_tables() {
-    if TURNING_GUIDE.get().is_some() && CONTACT_GUIDE.get().is_some() {
-        return;
-    }
-    let idx = |n: usize| (0..n).collect::<Vec<usize>>();
-    let (turning, contact) = contact_core::par::join(
-        || contact_core::par::map(&idx(GUIDE_N), |&i| Ok::<_, ()>(turning_guide_entry(i))),
-        || contact_core::par::map(&idx(CG_L.2), |&i| Ok::<_, ()>(contact_guide_row(i))),
-    );
-    // another thread may have built one meanwhile: the values are the same
-    if let Ok(t) = turning {
-        let _ = TURNING_GUIDE.set(t);
-    }
-    if let Ok(c) = contact {
-        let _ = CONTACT_GUIDE.set(c.into_iter().flatten().collect());
-    }
-}
-
 /// Estimate of ln s for lambda and Delta - Delta_j > 0, inside the guide: 4 x 4-point
 /// Lagrange interpolation (exact for bicubics; the stencil shifts inward at the edges of
 /// the grid), bilinear where a stencil holds a failed solve.

@@ -674,11 +674,6 @@ pub fn map_with(
     let (base, request, require) =
         map_request_with(scene, registry, vary, shard, accuracy, require)?;
     let ev = Evaluator::new(base, registry);
-    // the Maugis-Kim guide tables on both cores before the points start (a law axis may
-    // bring the law in even where the base scene does not use it)
-    if !contact_core::par::on_worker() {
-        maugis_kim::md::prepare_tables();
-    }
     let total = match request.shard {
         Some(s) => s.indices(request.grid.len()).count(),
         None => request.grid.len(),

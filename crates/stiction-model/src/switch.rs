@@ -447,11 +447,6 @@ impl<'a> SwitchModel<'a> {
     /// Runs the cycles (and the elastic comparison, at the same time), reporting cycles
     /// to `progress`.
     pub fn run(&self, progress: &dyn Progress) -> Result<SwitchResult, ModelError> {
-        // a run started outside the thread pool builds the Maugis-Kim solver's guide
-        // tables on both cores first (the same tables, a few ms sooner)
-        if self.spec.contact.adhesion.name == "maugis_kim" && !contact_core::par::on_worker() {
-            maugis_kim::md::prepare_tables();
-        }
         let file = self.spec.common.scene.file().to_string();
         self.run_inner(progress).map_err(|e| e.in_scene(&file))
     }
