@@ -156,14 +156,42 @@ impl AdhesionLaw for Dmt {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Jkr {
     p: JkrParams,
+    /// The radius-free factors of eq 7's scales: with q = R^(1/3), interference = i q and
+    /// radius scale = r q^2 (one cube root per call, as for [`MaugisKim`]).
+    i: f64,
+    r: f64,
 }
+
+/// (2/3) sqrt(6): Delta = A^2 - JKR_C sqrt(A) on the JKR curve.
+const JKR_C: f64 = 1.632_993_161_855_452;
+/// JKR_C^(1/3), the root y = sqrt(A) at Delta = 0.
+const JKR_C_CBRT: f64 = 1.177_591_843_000_481;
+/// 6^(-1/6), y = sqrt(A) at the turning point, where dDelta/dy = 0.
+const JKR_Y_T: f64 = 0.741_836_375_590_402_3;
 
 impl Jkr {
     /// The law of a JKR interface.
     pub fn new(params: JkrParams) -> Result<Self, MkError> {
-        positive("k", params.k)?;
-        positive("work_of_adhesion", params.work_of_adhesion)?;
-        Ok(Self { p: params })
+        let (k, w) = (
+            positive("k", params.k)?,
+            positive("work_of_adhesion", params.work_of_adhesion)?,
+        );
+        Ok(Self {
+            p: params,
+            i: (PI * PI * w * w / (k * k)).cbrt(),
+            r: (PI * w / k).cbrt(),
+        })
+    }
+
+    /// The scales of eq 7 for a sphere of `radius` (m), with one cube root.
+    fn scales(&self, radius: f64) -> Result<Scales, MkError> {
+        positive("radius", radius)?;
+        let q = cbrt_positive(radius);
+        Ok(Scales {
+            interference: self.i * q,
+            radius: self.r * q * q,
+            force: PI * self.p.work_of_adhesion * radius,
+        })
     }
 
     /// Turning-point interference Delta_t = -3 6^(-2/3).
@@ -177,17 +205,67 @@ impl Jkr {
     }
 
     /// Nondimensional contact radius A and force on the stable branch at Delta >= Delta_t.
+    ///
+    /// y = sqrt(A) >= y_t solves g(y) = y^4 - (2/3) sqrt(6) y - Delta = 0. g is convex and
+    /// increasing for y >= y_t, so Newton's method started above the root descends onto it
+    /// monotonically; it starts at Delta^(1/4) + ((2/3) sqrt 6)^(1/3), above the root
+    /// because (a + b)^4 >= a^4 + b^3 (a + b). Near the turning point, where g has a double
+    /// root, the descent slows to halving steps; after 200 the bracketed solve takes over.
     pub fn stable_point(delta: f64) -> Result<(f64, f64), MkError> {
+        finite("delta", delta)?;
         let dt = Self::turning_delta();
         if delta < dt {
             return Err(MkError::BelowTurningPoint { delta, turning: dt });
         }
-        // y = sqrt(A) >= y_t solves y^4 - (2/3) sqrt(6) y - Delta = 0, increasing for y >= y_t.
-        let c = 2.0 / 3.0 * 6f64.sqrt();
-        let y_t = 6f64.powf(-1.0 / 6.0);
+        let y = match Self::newton_y(delta) {
+            Some(y) => y,
+            None => Self::bracketed_y(delta)?,
+        };
+        let a = y * y;
+        Ok((a, a * a * a - 6f64.sqrt() * a * y))
+    }
+
+    /// The root y >= y_t of y^4 - c y - Delta by Newton's method from above; None if it
+    /// has not settled in 200 steps.
+    fn newton_y(delta: f64) -> Option<f64> {
+        let g = |y: f64| {
+            let y2 = y * y;
+            (y2 * y2 - JKR_C * y - delta, 4.0 * y2 * y - JKR_C)
+        };
+        if g(JKR_Y_T).0 >= 0.0 {
+            // Delta at the turning point to rounding
+            return Some(JKR_Y_T);
+        }
+        let mut y = delta.max(0.0).sqrt().sqrt() + JKR_C_CBRT;
+        for _ in 0..200 {
+            let (gy, dg) = g(y);
+            if gy <= 0.0 {
+                // on the root to rounding (from above, g only reaches 0 there)
+                return Some(y);
+            }
+            let next = y - gy / dg;
+            if !(next > JKR_Y_T) {
+                // cannot happen above the root of a convex g; the bracketed solve decides
+                return None;
+            }
+            if next >= y {
+                // the step is below rounding
+                return Some(y);
+            }
+            y = next;
+        }
+        None
+    }
+
+    /// The same root by a bracket search and Brent's method (the fallback of
+    /// [`Jkr::newton_y`], and the independent solve its test compares with).
+    #[doc(hidden)]
+    pub fn bracketed_y(delta: f64) -> Result<f64, MkError> {
+        let c = JKR_C;
+        let y_t = JKR_Y_T;
         let g = |y: f64| y * y * y * y - c * y - delta;
         let start = Sample { x: y_t, f: g(y_t) };
-        let y = if start.f >= 0.0 {
+        Ok(if start.f >= 0.0 {
             y_t
         } else {
             let ok = |y: f64| Ok::<_, CoreError>(g(y));
@@ -208,9 +286,7 @@ impl Jkr {
                 hi,
                 Tolerance::relative(1e-15).with_max_iter(200),
             )?
-        };
-        let a = y * y;
-        Ok((a, a * a * a - 6f64.sqrt() * a * y))
+        })
     }
 
     /// Nondimensional force on a path (see [`MdCurve::force`] for the path rule).
@@ -237,13 +313,13 @@ impl Jkr {
 
 impl AdhesionLaw for Jkr {
     fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
-        let sc = Scales::new(self.p.k, self.p.work_of_adhesion, radius)?;
+        let sc = self.scales(radius)?;
         finite("delta", delta)?;
         let path = nd_path(path, sc.interference);
         Ok(Self::force_nd(delta / sc.interference, path)? * sc.force)
     }
     fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
-        let sc = Scales::new(self.p.k, self.p.work_of_adhesion, radius)?;
+        let sc = self.scales(radius)?;
         Ok(Jumps {
             jump_in: 0.0,
             jump_out: Self::turning_delta() * sc.interference,
@@ -252,7 +328,7 @@ impl AdhesionLaw for Jkr {
     /// The JKR contact radius a = A (pi w R^2 / K)^(1/3), A = y^2 of the stable branch;
     /// 0 when detached.
     fn contact_radius(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
-        let sc = Scales::new(self.p.k, self.p.work_of_adhesion, radius)?;
+        let sc = self.scales(radius)?;
         finite("delta", delta)?;
         let d = delta / sc.interference;
         let attached = d >= 0.0
@@ -397,7 +473,56 @@ impl AdhesionLaw for MaugisKim {
 
 #[cfg(test)]
 mod tests {
-    use super::cbrt_positive;
+    use super::{cbrt_positive, Jkr, JKR_C, JKR_C_CBRT, JKR_Y_T};
+
+    /// The JKR constants are what they stand for, to an ulp or two.
+    #[test]
+    fn jkr_constants_are_their_formulas() {
+        let ulps = |a: f64, b: f64| (a - b).abs() / (f64::EPSILON * b);
+        assert!(ulps(JKR_C, 2.0 / 3.0 * 6f64.sqrt()) <= 1.0);
+        assert!(ulps(JKR_C_CBRT, JKR_C.cbrt()) <= 1.0);
+        assert!(ulps(JKR_Y_T, 6f64.powf(-1.0 / 6.0)) <= 2.0);
+        // dDelta/dy = 4 y^3 - c vanishes at the turning point
+        assert!((4.0 * JKR_Y_T.powi(3) - JKR_C).abs() <= 4.0 * f64::EPSILON);
+    }
+
+    /// Newton's descent finds the root of y^4 - c y - Delta that the bracketed Brent solve
+    /// finds, over Delta from the turning point to 1e15: the same y to 1e-14 where the root
+    /// is simple, and a residual at rounding next to the turning point (a double root,
+    /// where y itself is only defined to about sqrt(eps)). At Delta = 0 the root is
+    /// c^(1/3) (hand-derived: y^3 = c).
+    #[test]
+    fn jkr_newton_descent_matches_the_bracketed_solve() {
+        let dt = Jkr::turning_delta();
+        let mut deltas: Vec<f64> = (1..=16).map(|k| dt + 10f64.powi(-k)).collect();
+        deltas.extend([dt, 0.0, -0.5, 1.0]);
+        let mut x = 1e-12;
+        while x < 1e15 {
+            deltas.push(x);
+            if -x > dt {
+                deltas.push(-x);
+            }
+            x *= 1.37;
+        }
+        for &d in &deltas {
+            let y = Jkr::newton_y(d).expect("the descent settles");
+            let b = Jkr::bracketed_y(d).unwrap();
+            assert!(y >= JKR_Y_T, "Delta {d}: y {y}");
+            let scale = y.powi(4) + JKR_C * y + d.abs();
+            let residual = (y.powi(4) - JKR_C * y - d).abs();
+            assert!(
+                residual <= 8.0 * f64::EPSILON * scale,
+                "Delta {d}: residual {residual:e}"
+            );
+            if d - dt > 1e-3 {
+                assert!((y - b).abs() <= 1e-14 * b, "Delta {d}: {y} vs {b}");
+            }
+        }
+        let y0 = Jkr::newton_y(0.0).unwrap();
+        assert!((y0 - JKR_C_CBRT).abs() <= 2.0 * f64::EPSILON * y0);
+        assert!(Jkr::stable_point(f64::NAN).is_err());
+        assert!(Jkr::stable_point(f64::INFINITY).is_err());
+    }
 
     /// Within two ulps of the library's cube root over every binade a radius can take and
     /// far beyond (1e-300 to 1e300), and exact on perfect cubes of small integers.
