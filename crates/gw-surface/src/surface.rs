@@ -542,10 +542,21 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
                 })
             }
         };
+        // the four integrals start on the same panels: each radius is solved once (by the
+        // bits of u), the same value for each, so the same sums to the bit
+        let radii = std::cell::RefCell::new(std::collections::HashMap::<u64, f64>::new());
+        let known_radius = |u: f64| -> Result<f64, GwError> {
+            if let Some(&a) = radii.borrow().get(&u.to_bits()) {
+                return Ok(a);
+            }
+            let a = radius(u)?;
+            radii.borrow_mut().insert(u.to_bits(), a);
+            Ok(a)
+        };
         let integral = |what: &'static str, g: &dyn Fn(f64) -> f64| {
             integrate(
                 what,
-                |u: f64| Ok::<_, GwError>(g(radius(u)?) * self.normal.pdf(u)),
+                |u: f64| Ok::<_, GwError>(g(known_radius(u)?) * self.normal.pdf(u)),
                 &us,
                 true,
                 &self.rule,

@@ -520,15 +520,33 @@ pub fn unload<S: SurfaceLaw>(
     let scales = surface.length_scales(history)?;
     let grid = pull_out_grid(d_e, reach, scales);
     let ys = par::map(&grid, |&d| surface.pressure_scan(d, history, path))?;
+    // the refinement's estimates by the bits of x: the minimum's error estimate is then
+    // the one evaluated with its value, not a second evaluation
+    let mut refined: Memo = Memo::default();
     let m = refine_minima_par(
         "pull-out pressure",
-        |x| Ok::<_, SwitchError>(surface.pressure(x, history, path)?),
+        |x| {
+            let e = surface.pressure_estimate(x, history, path)?;
+            refined
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .insert(x.to_bits(), e);
+            Ok::<_, SwitchError>(e.value)
+        },
         &grid,
         &ys,
         Tolerance::relative((0.1 * precision.pull_out).clamp(1e-12, 1e-3)),
     )?;
     let (pull, at, error) = if m.value < 0.0 {
-        let e = surface.pressure_estimate(m.x, history, path)?;
+        let known = refined
+            .get_mut()
+            .unwrap_or_else(|e| e.into_inner())
+            .get(&m.x.to_bits())
+            .copied();
+        let e = match known {
+            Some(e) => e,
+            None => surface.pressure_estimate(m.x, history, path)?,
+        };
         (-m.value, m.x, e.error)
     } else {
         (0.0, reach, 0.0)
