@@ -13,9 +13,46 @@ pub fn stiction(args: &[&str]) -> Output {
         .expect("run stiction")
 }
 
+/// Prefix of the folder each test process writes in: `stiction-tests-<pid>`.
+const ROOT_PREFIX: &str = "stiction-tests-";
+
+/// This test process's folder under the system's temporary folder. The first call also
+/// removes the folders of earlier test processes that have ended (on systems with a
+/// `/proc`), so that repeated `cargo test` runs leave one run's files at most: a test
+/// binary has no hook at exit to remove its own.
+fn root() -> PathBuf {
+    static SWEPT: std::sync::Once = std::sync::Once::new();
+    let tmp = std::env::temp_dir();
+    SWEPT.call_once(|| {
+        let proc_fs = std::path::Path::new("/proc");
+        if !proc_fs.join("self").exists() {
+            return;
+        }
+        let Ok(entries) = std::fs::read_dir(&tmp) else {
+            return;
+        };
+        for e in entries.flatten() {
+            let name = e.file_name();
+            let Some(pid) = name.to_str().and_then(|n| n.strip_prefix(ROOT_PREFIX)) else {
+                continue;
+            };
+            // only `stiction-tests-<digits>` (older layouts appended `-<tag>`: the pid
+            // is the digits before the first '-')
+            let digits = pid.split('-').next().unwrap_or("");
+            if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+                continue;
+            }
+            if !proc_fs.join(digits).exists() {
+                let _ = std::fs::remove_dir_all(e.path());
+            }
+        }
+    });
+    tmp.join(format!("{ROOT_PREFIX}{}", std::process::id()))
+}
+
 /// A fresh temporary folder for one test.
 pub fn temp_dir(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stiction-tests-{}-{tag}", std::process::id()));
+    let dir = root().join(tag);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -23,7 +60,7 @@ pub fn temp_dir(tag: &str) -> PathBuf {
 
 /// Writes `bytes` to a fresh temporary file and returns its path.
 pub fn temp_file(tag: &str, bytes: &[u8]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stiction-tests-{}", std::process::id()));
+    let dir = root().join("files");
     std::fs::create_dir_all(&dir).unwrap();
     let p = dir.join(format!("{tag}.toml"));
     std::fs::write(&p, bytes).unwrap();

@@ -433,6 +433,24 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
     root.present().map_err(plot_err)
 }
 
+/// A chart with `title` on `area` over the scales (x, y), `(y_label_width,
+/// bottom_margin)` in pixels: what both the ratio plots and the 2-D map start from.
+fn chart_on<'a, 'b>(
+    area: &'a DrawingArea<SVGBackend<'b>, plotters::coord::Shift>,
+    title: String,
+    (xs, ys): (&Scale, &Scale),
+    (y_label_width, bottom_margin): (u32, u32),
+) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticked, Ticked>>, DesignError> {
+    ChartBuilder::on(area)
+        .caption(title, (FONT, 22))
+        .margin(15)
+        .margin_bottom(bottom_margin)
+        .x_label_area_size(50)
+        .y_label_area_size(y_label_width)
+        .build_cartesian_2d(xs.coord(), ys.coord())
+        .map_err(plot_err)
+}
+
 /// The frame both ratio plots share: the title, the axes (`scales`: x, y, and whether y
 /// is log10 of the ratio), the mesh with its labels, and the line ratio = 1 with
 /// `boundary_label` in the legend.
@@ -443,13 +461,7 @@ fn ratio_frame<'a, 'b>(
     x_desc: String,
     boundary_label: &str,
 ) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticked, Ticked>>, DesignError> {
-    let mut chart = ChartBuilder::on(root)
-        .caption(title, (FONT, 22))
-        .margin(15)
-        .x_label_area_size(50)
-        .y_label_area_size(85)
-        .build_cartesian_2d(xs.coord(), ys.coord())
-        .map_err(plot_err)?;
+    let mut chart = chart_on(root, title, (xs, ys), (85, 15))?;
     let xf = |t: &f64| xs.label(*t);
     let yf = |t: &f64| ys.label(*t);
     chart
@@ -745,14 +757,7 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignErr
     let root = SVGBackend::with_string(buf, (980, 720)).into_drawing_area();
     root.fill(&WHITE).map_err(plot_err)?;
     let (main, bar) = root.split_horizontally(850);
-    let mut chart = ChartBuilder::on(&main)
-        .caption(title, (FONT, 22))
-        .margin(15)
-        .margin_bottom(35)
-        .x_label_area_size(50)
-        .y_label_area_size(90)
-        .build_cartesian_2d(xs.coord(), ys.coord())
-        .map_err(plot_err)?;
+    let mut chart = chart_on(&main, title, (&xs, &ys), (90, 35))?;
     let xf = |t: &f64| xs.label(*t);
     let yf = |t: &f64| ys.label(*t);
     chart
