@@ -390,6 +390,8 @@ pub struct MaugisKim {
     i: f64,
     r: f64,
     l: f64,
+    /// The force above the junction from the interpolation table ([`Self::interpolated`]).
+    table: bool,
 }
 
 impl MaugisKim {
@@ -402,7 +404,31 @@ impl MaugisKim {
             r: (PI * w / k).cbrt(),
             l: 2.0 * (w / p.z0) * (1.0 / (PI * w * k * k)).cbrt(),
             p,
+            table: false,
         })
+    }
+
+    /// The same law with its force on the contact branch above the junction interpolated
+    /// from a table instead of solved, within [`crate::INTERPOLATION_ERROR`] of
+    /// max(|F|, pi w R) (the solve everywhere else, and for the contact radius): about five
+    /// times cheaper per evaluation. What a rough surface uses in fast mode.
+    ///
+    /// ```
+    /// use contact_core::{AdhesionLaw, Path};
+    /// use maugis_kim::{DugdaleParams, MaugisKim, INTERPOLATION_ERROR};
+    /// let exact = MaugisKim::new(DugdaleParams { k: 1e11, work_of_adhesion: 1.0, z0: 0.4e-9 })?;
+    /// let table = exact.interpolated();
+    /// let (r, delta) = (1e-6, 2e-9);
+    /// let scale = std::f64::consts::PI * 1.0 * r; // pi w R
+    /// let (a, b) = (exact.force(r, delta, Path::Approach)?, table.force(r, delta, Path::Approach)?);
+    /// assert!((a - b).abs() <= INTERPOLATION_ERROR * a.abs().max(scale));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn interpolated(self) -> Self {
+        Self {
+            table: true,
+            ..self
+        }
     }
 
     /// The scales and the curve of a sphere of `radius` (m) at once.
@@ -438,7 +464,19 @@ impl AdhesionLaw for MaugisKim {
     fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
         finite("delta", delta)?;
         let (sc, curve) = self.sphere(radius)?;
-        Ok(curve.force(delta / sc.interference, nd_path(path, sc.interference))? * sc.force)
+        let (d, path) = (delta / sc.interference, nd_path(path, sc.interference));
+        let f = if self.table {
+            curve.force_interpolated(d, path)?
+        } else {
+            curve.force(d, path)?
+        };
+        Ok(f * sc.force)
+    }
+    /// The interpolated law ([`MaugisKim::interpolated`]) where its error bound is within
+    /// `rel_force`.
+    fn within(&self, rel_force: f64) -> Option<std::sync::Arc<dyn AdhesionLaw + Send + Sync>> {
+        (crate::INTERPOLATION_ERROR <= rel_force)
+            .then(|| std::sync::Arc::new(self.interpolated()) as _)
     }
     fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
         let (sc, curve) = self.sphere(radius)?;

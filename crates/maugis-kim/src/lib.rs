@@ -31,8 +31,12 @@ mod error;
 mod laws;
 pub mod md;
 mod scales;
+mod table;
 
 pub use error::MkError;
 pub use laws::{Dmt, DugdaleParams, Hertz, Jkr, JkrParams, MaugisKim};
 pub use md::{Branch, MdCurve, MdPoint, LAMBDA_CRITICAL};
 pub use scales::Scales;
+/// Largest error of the interpolated Maugis-Kim force ([`MaugisKim::interpolated`],
+/// [`MdCurve::force_interpolated`]) relative to max(|Fbar|, 1), i.e. to max(|F|, pi w R).
+pub use table::MAX_ERROR as INTERPOLATION_ERROR;

@@ -616,6 +616,27 @@ impl MdCurve {
     /// Approach: zero while Delta < Delta_in, then the stable branch (jump-in). Retract
     /// (after having reached Delta_in): the stable branch down to Delta_t, then zero.
     pub fn force(&self, delta: f64, path: Path) -> Result<f64, MkError> {
+        self.force_with(delta, path, false)
+    }
+
+    /// [`Self::force`] with the stable force on the contact branch above the junction read
+    /// from the interpolation table (within [`crate::INTERPOLATION_ERROR`] of max(|Fbar|, 1))
+    /// where the table holds it, solved elsewhere.
+    pub fn force_interpolated(&self, delta: f64, path: Path) -> Result<f64, MkError> {
+        self.force_with(delta, path, true)
+    }
+
+    /// The stable point's force, from the table when `table` and it holds the point.
+    fn stable_force(&self, delta: f64, table: bool) -> Result<f64, MkError> {
+        if table {
+            if let Some(f) = crate::table::force(self.lambda, delta - self.junction().delta) {
+                return Ok(f);
+            }
+        }
+        Ok(self.stable_point(delta)?.force)
+    }
+
+    fn force_with(&self, delta: f64, path: Path, table: bool) -> Result<f64, MkError> {
         let from = match path {
             Path::Retract { from } => from,
             Path::Approach => 0.0,
@@ -632,7 +653,7 @@ impl MdCurve {
         }
         let d_in = self.jump_in_delta();
         if delta >= d_in {
-            return Ok(self.stable_point(delta)?.force);
+            return self.stable_force(delta, table);
         }
         match path {
             Path::Approach => Ok(0.0),
@@ -642,7 +663,7 @@ impl MdCurve {
                 if delta < t.delta {
                     Ok(0.0)
                 } else {
-                    Ok(self.stable_point(delta)?.force)
+                    self.stable_force(delta, table)
                 }
             }
         }

@@ -90,6 +90,15 @@ impl Accuracy {
         }
     }
 
+    /// The error an asperity's force may carry (relative to max(|F|, pi w R)) without
+    /// showing in the height quadrature: a tenth of the quadrature's floor, which is a
+    /// thousandth of its relative tolerance of the forces summed. Fast mode: 1e-9, where
+    /// the tabulated Maugis-Kim force (`maugis_kim::INTERPOLATION_ERROR`) qualifies;
+    /// balanced 1e-11 and tighter modes solve every force.
+    pub fn force_tolerance(self) -> f64 {
+        1e-4 * self.quadrature(0.0).rel_tol
+    }
+
     /// The targets of the switch computations (d_e, pull-out); the pressure floor that
     /// does not matter to a switch goes to the surface's quadrature ([`Self::quadrature`]).
     pub fn precision(self) -> switch_1d::Precision {
@@ -104,5 +113,50 @@ impl Accuracy {
 impl std::fmt::Display for Accuracy {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.as_str())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Accuracy;
+    use contact_core::{AdhesionLaw, Path};
+    use maugis_kim::{DugdaleParams, MaugisKim, INTERPOLATION_ERROR};
+
+    /// Fast mode's force tolerance admits the tabulated Maugis-Kim force and no tighter
+    /// mode's does; the law offers its table exactly when asked within its bound, and the
+    /// offered law agrees with the solve to that bound (SI, a sphere of the paper's size
+    /// over interferences from adhesive to deep).
+    #[test]
+    fn only_fast_mode_reads_the_tabulated_maugis_kim_force() {
+        assert!(Accuracy::Fast.force_tolerance() >= INTERPOLATION_ERROR);
+        for m in [Accuracy::Balanced, Accuracy::Accurate, Accuracy::Reference] {
+            assert!(m.force_tolerance() < INTERPOLATION_ERROR, "{m}");
+        }
+        let w = 1.0;
+        let law = MaugisKim::new(DugdaleParams {
+            k: 2.7e11,
+            work_of_adhesion: w,
+            z0: 0.169e-9,
+        })
+        .unwrap();
+        assert!(law.within(Accuracy::Balanced.force_tolerance()).is_none());
+        let table = law
+            .within(Accuracy::Fast.force_tolerance())
+            .expect("fast mode gets the table");
+        let r = 1e-6;
+        let scale = std::f64::consts::PI * w * r;
+        let mut read = 0;
+        for k in 0..400 {
+            let delta = -0.3e-9 + 8e-9 * k as f64 / 399.0;
+            for path in [Path::Approach, Path::Retract { from: 8e-9 }] {
+                let exact = law.force(r, delta, path).unwrap();
+                let got = table.force(r, delta, path).unwrap();
+                let err = (got - exact).abs() / exact.abs().max(scale);
+                assert!(err <= INTERPOLATION_ERROR, "delta {delta:e}: {err:e}");
+                read += usize::from(got != exact);
+            }
+        }
+        // most of these points are read from the table, not solved
+        assert!(read > 400, "{read} of 800 points differ from the solve");
     }
 }

@@ -118,15 +118,25 @@ pub struct ContactSpec {
 impl ContactSpec {
     /// The asperity of the scene's laws (with its reload rule).
     pub fn asperity(&self) -> Asperity {
-        ElastoPlasticAsperity::new(self.plasticity.law.clone(), self.adhesion.law.clone())
-            .with_reload(self.reload)
+        self.asperity_with(self.adhesion.law.clone())
+    }
+
+    /// [`Self::asperity`] with another form of the adhesion law (its cheaper form within
+    /// a mode's force tolerance, `AdhesionLaw::within`).
+    pub fn asperity_with(&self, adhesion: DynAdhesion) -> Asperity {
+        ElastoPlasticAsperity::new(self.plasticity.law.clone(), adhesion).with_reload(self.reload)
     }
 
     /// The same asperity with a plasticity law that never yields (the elastic comparison).
     pub fn elastic_asperity(&self) -> Asperity {
+        self.elastic_asperity_with(self.adhesion.law.clone())
+    }
+
+    /// [`Self::elastic_asperity`] with another form of the adhesion law.
+    pub fn elastic_asperity_with(&self, adhesion: DynAdhesion) -> Asperity {
         let elastic: DynPlasticity =
             Arc::new(Elastic::new(self.radius).expect("a validated radius is positive"));
-        ElastoPlasticAsperity::new(elastic, self.adhesion.law.clone())
+        ElastoPlasticAsperity::new(elastic, adhesion)
     }
 
     /// The smaller yield stress of the two bodies (Pa; infinite if neither yields).

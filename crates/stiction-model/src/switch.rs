@@ -734,10 +734,16 @@ pub fn rough_surface(
     abs_floor: f64,
     elastic: bool,
 ) -> Result<RoughSurface, ModelError> {
+    // the adhesion law's cheaper form where the mode's quadrature cannot see its error
+    let adhesion = contact
+        .adhesion
+        .law
+        .within(accuracy.force_tolerance())
+        .unwrap_or_else(|| contact.adhesion.law.clone());
     let asperity = if elastic {
-        contact.elastic_asperity()
+        contact.elastic_asperity_with(adhesion)
     } else {
-        contact.asperity()
+        contact.asperity_with(adhesion)
     };
     Ok(GreenwoodWilliamson::new(
         asperity,

@@ -1,0 +1,214 @@
+//! The Maugis-Kim force on the contact branch above the junction, read from a table instead
+//! of solved: the fast path of [`crate::MaugisKim::interpolated`].
+//!
+//! Fbar is tabulated on a uniform grid in x = ln lambda and y = ln(Delta - Delta_j), where it
+//! is smooth (Delta - Delta_j spans many decades; near the junction Fbar tends to its
+//! junction value exponentially in y), and read by 6 x 6-point Lagrange interpolation,
+//! exact for polynomials of degree 5 in each variable. The error was measured before the
+//! table was written (`docs/performance.md` section 9): it falls as h^6 everywhere except
+//! in the corner where the turning point meets the junction (lambda near lambda_c, Delta
+//! near Delta_j), which the table leaves to the solver. At the step used here the largest
+//! error over the domain, relative to max(|Fbar|, 1), is [`MAX_ERROR`] (test
+//! `the_table_holds_its_bound_over_the_whole_domain`).
+//!
+//! The table is never built whole: it is split into tiles of TILE x TILE entries, each
+//! solved (by the exact stable-point solve) the first time a stencil reaches it and kept for
+//! the life of the process. A switch run needs a few hundred tiles (the lambdas of its
+//! asperities span a narrow band); a design map shares them between all its points.
+
+use crate::md::{MdCurve, LAMBDA_CRITICAL};
+use std::sync::OnceLock;
+
+/// Grid: ln lambda from X0 in NX steps of H; y = ln(Delta - Delta_j) from Y0 in NY steps.
+const H: f64 = 0.02;
+const X0: f64 = -4.0;
+const NX: usize = 551; // to ln lambda = 7
+const Y0: f64 = -12.0;
+const NY: usize = 1101; // to y = 10
+const TILE: usize = 16;
+const TX: usize = NX.div_ceil(TILE);
+const TY: usize = NY.div_ceil(TILE);
+
+/// Largest interpolation error relative to max(|Fbar|, 1) over the table's domain: 2.2e-10
+/// measured on 40,000 random points (median 9.6e-13, 99th percentile 2.0e-11, the largest
+/// ones along the edges of the corner left to the solver; at a step of 0.015 the largest
+/// was 3.9e-11 for 1.8 times the entries), bounded here with a margin above two.
+pub const MAX_ERROR: f64 = 5e-10;
+
+/// The corner left to the solver: |ln lambda - ln lambda_c| < CORNER_X and y < CORNER_Y
+/// (with 0.35 and -3 the largest error was 2.2e-10, all of it next to the corner; the
+/// wider corner sends 0.3 % of the T1 film's solves to the solver instead of 0.15 %).
+const CORNER_X: f64 = 0.5;
+const CORNER_Y: f64 = -2.0;
+
+/// A tile holds the entries of its TILE x TILE stencil origins and of the 5 rows and
+/// columns after them, so that every stencil lies in one tile (entries on tile edges are
+/// solved twice: (21/16)^2 of the entries in all, for one tile per lookup; a tile of rows
+/// only, with stencils across two tiles, cost as much in all).
+const SIDE: usize = TILE + 5;
+type Tile = Box<[f64; SIDE * SIDE]>;
+
+static TILES: [OnceLock<Tile>; TX * TY] = [const { OnceLock::new() }; TX * TY];
+
+/// Fbar at the grid node (i, j) of one row's `curve` (lambda_i), by the exact solve; NaN
+/// where it fails or off the grid.
+fn node(curve: Option<&MdCurve>, j: usize) -> f64 {
+    let Some(curve) = curve else {
+        return f64::NAN;
+    };
+    if j >= NY {
+        return f64::NAN;
+    }
+    let delta = curve.junction().delta + (Y0 + H * j as f64).exp();
+    curve.stable_point(delta).map_or(f64::NAN, |p| p.force)
+}
+
+/// The tile whose stencil origins are rows ti * TILE.. and columns tj * TILE..
+fn tile(ti: usize, tj: usize) -> &'static [f64; SIDE * SIDE] {
+    TILES[ti * TY + tj].get_or_init(|| {
+        let mut t = Box::new([f64::NAN; SIDE * SIDE]);
+        for r in 0..SIDE {
+            let i = ti * TILE + r;
+            let curve = (i < NX)
+                .then(|| MdCurve::new((X0 + H * i as f64).exp()).ok())
+                .flatten();
+            for c in 0..SIDE {
+                t[r * SIDE + c] = node(curve.as_ref(), tj * TILE + c);
+            }
+        }
+        t
+    })
+}
+
+/// Lagrange weights of the nodes at -2, -1, 0, 1, 2, 3 for the point f in [0, 1).
+fn weights(f: f64) -> [f64; 6] {
+    // 1 / prod_{m != k} (t_k - t_m)
+    const INV_DEN: [f64; 6] = [
+        -1.0 / 120.0,
+        1.0 / 24.0,
+        -1.0 / 12.0,
+        1.0 / 12.0,
+        -1.0 / 24.0,
+        1.0 / 120.0,
+    ];
+    let d = [f + 2.0, f + 1.0, f, f - 1.0, f - 2.0, f - 3.0];
+    // prefix and suffix products: prod over m != k without a division
+    let mut w = [0.0; 6];
+    let mut left = 1.0;
+    for k in 0..6 {
+        w[k] = left * INV_DEN[k];
+        left *= d[k];
+    }
+    let mut right = 1.0;
+    for k in (0..6).rev() {
+        w[k] *= right;
+        right *= d[k];
+    }
+    w
+}
+
+/// Fbar on the stable contact branch at `lambda` and Delta = Delta_j + `above_junction`,
+/// interpolated within [`MAX_ERROR`]; None outside the table (beyond its lambda or Delta
+/// range, in the corner near lambda_c, or where a stencil holds a failed solve): the caller
+/// then solves.
+pub(crate) fn force(lambda: f64, above_junction: f64) -> Option<f64> {
+    if !(above_junction > 0.0 && lambda > 0.0) {
+        return None;
+    }
+    let (lx, ly) = (lambda.ln(), above_junction.ln());
+    if ly < CORNER_Y && (lx - LAMBDA_CRITICAL.ln()).abs() < CORNER_X {
+        return None;
+    }
+    let x = (lx - X0) / H;
+    let y = (ly - Y0) / H;
+    // the stencil i - 2 ..= i + 3 inside the grid
+    if !(x >= 2.0 && x < (NX - 4) as f64 && y >= 2.0 && y < (NY - 4) as f64) {
+        return None;
+    }
+    let (i, j) = (x as usize, y as usize);
+    let wx = weights(x - i as f64);
+    let wy = weights(y - j as f64);
+    // the stencil's origin (i - 2, j - 2) and its tile
+    let (i0, j0) = (i - 2, j - 2);
+    let t = tile(i0 / TILE, j0 / TILE);
+    let (r0, c0) = (i0 % TILE, j0 % TILE);
+    let mut f = 0.0;
+    for (di, wi) in wx.iter().enumerate() {
+        let start = (r0 + di) * SIDE + c0;
+        let row = &t[start..start + 6];
+        let mut s = 0.0;
+        for (w, v) in wy.iter().zip(row) {
+            s += w * v;
+        }
+        f += wi * s;
+    }
+    // a failed solve in the stencil makes the sum NaN
+    f.is_finite().then_some(f)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Random points over the whole table (x from the third node to the fifth-last, every
+    /// y likewise, the corner left out): the interpolated force against the exact solve,
+    /// relative to max(|Fbar|, 1), within MAX_ERROR; and None exactly where promised.
+    #[test]
+    fn the_table_holds_its_bound_over_the_whole_domain() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut uniform = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (x_lo, x_hi) = (X0 + 2.0 * H, X0 + (NX - 4) as f64 * H);
+        let (y_lo, y_hi) = (Y0 + 2.0 * H, Y0 + (NY - 4) as f64 * H);
+        let mut errors = Vec::new();
+        while errors.len() < 10_000 {
+            let lx = x_lo + (x_hi - x_lo) * uniform();
+            let ly = y_lo + (y_hi - y_lo) * uniform();
+            let lambda = lx.exp();
+            let in_corner = ly < CORNER_Y && (lx - LAMBDA_CRITICAL.ln()).abs() < CORNER_X;
+            let got = force(lambda, ly.exp());
+            if in_corner {
+                assert!(got.is_none(), "the corner is the solver's: {lx} {ly}");
+                continue;
+            }
+            let curve = MdCurve::new(lambda).unwrap();
+            let exact = curve
+                .stable_point(curve.junction().delta + ly.exp())
+                .unwrap()
+                .force;
+            let got = got.unwrap_or_else(|| panic!("no entry at ln lambda {lx}, y {ly}"));
+            errors.push(((got - exact).abs() / exact.abs().max(1.0), lx, ly));
+        }
+        errors.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let (median, p99, worst) = (
+            errors[errors.len() / 2].0,
+            errors[errors.len() * 99 / 100].0,
+            errors[errors.len() - 1],
+        );
+        eprintln!("interpolation error: median {median:.1e}, 99 % {p99:.1e}, max {:.1e} at ln lambda {:.3}, y {:.3}", worst.0, worst.1, worst.2);
+        assert!(worst.0 <= MAX_ERROR, "max {worst:?}");
+        // outside the grid the solver answers
+        assert!(force(1e-3, 1.0).is_none());
+        assert!(force(2.0, 1e-9).is_none());
+        assert!(force(2.0, 0.0).is_none());
+    }
+
+    /// The weights reproduce polynomials of degree 5 exactly and sum to one.
+    #[test]
+    fn weights_are_exact_for_quintics() {
+        for f in [0.0, 0.1, 0.5, 0.77, 0.999] {
+            let w = weights(f);
+            for p in 0..=5 {
+                let interpolated: f64 = (0..6).map(|k| w[k] * ((k as f64) - 2.0).powi(p)).sum();
+                assert!(
+                    (interpolated - f.powi(p)).abs() < 1e-13,
+                    "f {f}, degree {p}: {interpolated}"
+                );
+            }
+        }
+    }
+}
