@@ -31,6 +31,13 @@ fn no_end_of_impact(e: &ModelError) -> bool {
     )
 }
 
+/// Whether a run rejected the scene as input (a derived quantity out of its domain, such
+/// as the impact energy per contact area E_I/phi): the generator's scene, not a failure.
+fn input_error(e: &ModelError) -> bool {
+    use stiction_model::contact_core::{Categorized, Category};
+    e.category() == Category::Input
+}
+
 fn errors(a: &SwitchResult, b: &SwitchResult, sigma: f64) -> (f64, f64) {
     let floor = 1e-9 * a.restoring_pressure / a.contact_area_fraction;
     a.cycles
@@ -122,7 +129,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
     for domain in [Domain::Mems, Domain::Wide] {
         let mut rng = Rng::new(seed ^ if domain == Domain::Wide { 0xABCD } else { 0 });
         let mut stats: Vec<Stats> = modes.iter().map(|_| Stats::default()).collect();
-        let (mut scenes, mut unanswered, mut reference_failed) = (0, 0, 0);
+        let (mut scenes, mut unanswered, mut reference_failed, mut rejected) = (0, 0, 0, 0);
         while scenes < n / 2 {
             let scene = scenegen::switch_scene(&mut rng, domain, "generated");
             let Ok(mut s) = SwitchSpec::new(&scene, &registry) else {
@@ -137,6 +144,10 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                 Ok(r) => r,
                 Err(e) if no_end_of_impact(&e) => {
                     unanswered += 1;
+                    continue;
+                }
+                Err(e) if input_error(&e) => {
+                    rejected += 1;
                     continue;
                 }
                 Err(e) => {
@@ -214,7 +225,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
         }
         let accurate_time: f64 = stats[0].time.iter().sum();
         table += &format!(
-            "\n**{}** ({scenes} scenes; {unanswered} where the model has no end of impact: the surface cannot absorb the impact energy, in the wide ranges mostly because adhesion pulls harder than the asperities push back; {reference_failed} where the reference mode failed numerically):\n\n",
+            "\n**{}** ({scenes} scenes; {unanswered} where the model has no end of impact: the surface cannot absorb the impact energy, in the wide ranges mostly because adhesion pulls harder than the asperities push back; {rejected} rejected as input when run, a derived quantity such as the impact energy per contact area E_I/phi being outside its domain; {reference_failed} where the reference mode failed numerically):\n\n",
             match domain {
                 Domain::Mems => "Plausible MEMS contacts",
                 Domain::Wide => "The wide ranges a scene accepts",
