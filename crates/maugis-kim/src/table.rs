@@ -16,7 +16,7 @@
 //! the life of the process. A switch run needs a few hundred tiles (the lambdas of its
 //! asperities span a narrow band); a design map shares them between all its points.
 
-use crate::md::{MdCurve, LAMBDA_CRITICAL};
+use crate::md::MdCurve;
 use std::sync::OnceLock;
 
 /// Grid: ln lambda from X0 in NX steps of H; y = ln(Delta - Delta_j) from Y0 in NY steps.
@@ -39,6 +39,8 @@ pub const MAX_ERROR: f64 = 5e-10;
 /// (with 0.35 and -3 the largest error was 2.2e-10, all of it next to the corner; the
 /// wider corner sends 0.3 % of the T1 film's solves to the solver instead of 0.15 %).
 const CORNER_X: f64 = 0.5;
+/// ln lambda_c, the corner's centre (test `the_corner_is_centred_on_lambda_c`).
+const LN_LAMBDA_CRITICAL: f64 = -0.064_061_347_311_685_31;
 const CORNER_Y: f64 = -2.0;
 
 /// A tile holds the entries of its TILE x TILE stencil origins and of the 5 rows and
@@ -116,7 +118,7 @@ pub(crate) fn force(lambda: f64, above_junction: f64) -> Option<f64> {
         return None;
     }
     let (lx, ly) = (lambda.ln(), above_junction.ln());
-    if ly < CORNER_Y && (lx - LAMBDA_CRITICAL.ln()).abs() < CORNER_X {
+    if ly < CORNER_Y && (lx - LN_LAMBDA_CRITICAL).abs() < CORNER_X {
         return None;
     }
     let x = (lx - X0) / H;
@@ -149,6 +151,7 @@ pub(crate) fn force(lambda: f64, above_junction: f64) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::md::LAMBDA_CRITICAL;
 
     /// Random points over the whole table (x from the third node to the fifth-last, every
     /// y likewise, the corner left out): the interpolated force against the exact solve,
@@ -169,7 +172,7 @@ mod tests {
             let lx = x_lo + (x_hi - x_lo) * uniform();
             let ly = y_lo + (y_hi - y_lo) * uniform();
             let lambda = lx.exp();
-            let in_corner = ly < CORNER_Y && (lx - LAMBDA_CRITICAL.ln()).abs() < CORNER_X;
+            let in_corner = ly < CORNER_Y && (lx - LN_LAMBDA_CRITICAL).abs() < CORNER_X;
             let got = force(lambda, ly.exp());
             if in_corner {
                 assert!(got.is_none(), "the corner is the solver's: {lx} {ly}");
@@ -195,6 +198,11 @@ mod tests {
         assert!(force(1e-3, 1.0).is_none());
         assert!(force(2.0, 1e-9).is_none());
         assert!(force(2.0, 0.0).is_none());
+    }
+
+    #[test]
+    fn the_corner_is_centred_on_lambda_c() {
+        assert_eq!(LN_LAMBDA_CRITICAL, LAMBDA_CRITICAL.ln());
     }
 
     /// The weights reproduce polynomials of degree 5 exactly and sum to one.
