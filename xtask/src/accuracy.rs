@@ -2,6 +2,10 @@
 //! reference mode and its speed-up over the accurate mode, over random switch scenes of
 //! the documented domains (half plausible MEMS, half the wide ranges); the table replaces
 //! the marked section of docs/performance.md.
+//!
+//! `--times FILE` also writes every run's wall time as CSV (`domain,scene,mode,seconds,
+//! outcome`; scene counts from 1 in each domain, in the generator's order), so that the
+//! scenes behind a mode's total time can be found and rerun.
 
 use std::io::IsTerminal;
 use std::time::Instant;
@@ -99,6 +103,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
     let mut n = 100usize;
     let mut seed = 20261123u64;
     let mut stopping_rule = true;
+    let mut times_path: Option<String> = None;
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match *a {
@@ -117,8 +122,19 @@ pub fn main(args: &[&str]) -> Result<(), String> {
             // the error table alone: the stopping-rule runs (each scene until accommodated,
             // up to 20 cycles, in every mode and the reference) are most of the time
             "--no-stopping-rule" => stopping_rule = false,
+            "--times" => {
+                times_path = Some(
+                    it.next()
+                        .ok_or("--times needs a file (CSV of every run's wall time)")?
+                        .to_string(),
+                )
+            }
             other => return Err(format!("unknown option {other}")),
         }
+    }
+    // a path that cannot take the file is refused now, not after the hours of the run
+    if let Some(p) = &times_path {
+        stiction::output::check_file(std::path::Path::new(p)).map_err(|e| e.to_string())?;
     }
     let modes = [Accuracy::Accurate, Accuracy::Balanced, Accuracy::Fast];
     let registry = LawRegistry::builtin();
@@ -126,6 +142,11 @@ pub fn main(args: &[&str]) -> Result<(), String> {
     let progress = std::io::stderr().is_terminal();
     let mut table = String::new();
     let mut notes = Vec::new();
+    // domain, scene, mode, seconds, outcome
+    let mut times = String::from("domain,scene,mode,seconds,outcome\n");
+    let mut timed = |domain: Domain, scene: usize, mode: Accuracy, t: f64, outcome: &str| {
+        times += &format!("{domain:?},{scene},{mode},{t:.6},{outcome}\n");
+    };
     for domain in [Domain::Mems, Domain::Wide] {
         let mut rng = Rng::new(seed ^ if domain == Domain::Wide { 0xABCD } else { 0 });
         let mut stats: Vec<Stats> = modes.iter().map(|_| Stats::default()).collect();
@@ -139,18 +160,24 @@ pub fn main(args: &[&str]) -> Result<(), String> {
             // (a rest solve per cycle, the longest part of some reference runs) is not needed
             s.contact_states = stiction_model::spec::ContactStates::None;
             scenes += 1;
-            let (reference, _) = run(&s, Accuracy::Reference);
+            let (reference, t_ref) = run(&s, Accuracy::Reference);
             let reference = match reference {
-                Ok(r) => r,
+                Ok(r) => {
+                    timed(domain, scenes, Accuracy::Reference, t_ref, "ok");
+                    r
+                }
                 Err(e) if no_end_of_impact(&e) => {
+                    timed(domain, scenes, Accuracy::Reference, t_ref, "no end of impact");
                     unanswered += 1;
                     continue;
                 }
                 Err(e) if input_error(&e) => {
+                    timed(domain, scenes, Accuracy::Reference, t_ref, "rejected as input");
                     rejected += 1;
                     continue;
                 }
                 Err(e) => {
+                    timed(domain, scenes, Accuracy::Reference, t_ref, "failed");
                     reference_failed += 1;
                     notes.push(format!("{domain:?} reference: failed: {e}"));
                     report_scene(&s);
@@ -194,6 +221,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
             }
             for (k, &mode) in modes.iter().enumerate() {
                 let (r, t) = run(&s, mode);
+                timed(domain, scenes, mode, t, if r.is_ok() { "ok" } else { "failed" });
                 match r {
                     Ok(r) => {
                         let (de, po) = errors(&reference, &r, sigma);
@@ -271,6 +299,11 @@ pub fn main(args: &[&str]) -> Result<(), String> {
         }
     );
     println!("{body}");
+    if let Some(p) = &times_path {
+        stiction::output::write_file(std::path::Path::new(p), times.as_bytes())
+            .map_err(|e| e.to_string())?;
+        eprintln!("every run's wall time: {p}");
+    }
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/performance.md");
     let doc = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
     let new = match (doc.find(BEGIN), doc.find(END)) {
