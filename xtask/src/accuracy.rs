@@ -167,12 +167,24 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                     r
                 }
                 Err(e) if no_end_of_impact(&e) => {
-                    timed(domain, scenes, Accuracy::Reference, t_ref, "no end of impact");
+                    timed(
+                        domain,
+                        scenes,
+                        Accuracy::Reference,
+                        t_ref,
+                        "no end of impact",
+                    );
                     unanswered += 1;
                     continue;
                 }
                 Err(e) if input_error(&e) => {
-                    timed(domain, scenes, Accuracy::Reference, t_ref, "rejected as input");
+                    timed(
+                        domain,
+                        scenes,
+                        Accuracy::Reference,
+                        t_ref,
+                        "rejected as input",
+                    );
                     rejected += 1;
                     continue;
                 }
@@ -221,7 +233,13 @@ pub fn main(args: &[&str]) -> Result<(), String> {
             }
             for (k, &mode) in modes.iter().enumerate() {
                 let (r, t) = run(&s, mode);
-                timed(domain, scenes, mode, t, if r.is_ok() { "ok" } else { "failed" });
+                timed(
+                    domain,
+                    scenes,
+                    mode,
+                    t,
+                    if r.is_ok() { "ok" } else { "failed" },
+                );
                 match r {
                     Ok(r) => {
                         let (de, po) = errors(&reference, &r, sigma);

@@ -273,16 +273,30 @@ fn an_energy_the_surface_cannot_absorb_is_an_error() {
     assert!(run_cycles(&gw, gw.virgin(), bad, quick(1), &mut |_| {}).is_err());
 }
 
-/// A surface that reports every approach pressure's error 1e8 times larger than
-/// its quadrature's, and logs the separations it is asked for. Its d_e estimate is then
-/// dominated by the pressures' own errors, which no tighter energy integral removes, so
-/// eq 17 is re-solved twice (the most it is) on the same panels.
-struct Pessimist<'a, S> {
+/// A surface that wraps another, logs the approach separations it is asked for, and can
+/// report every approach pressure's error `inflate` times larger than its quadrature's (with
+/// a floor of 1e-12 of the pressure) and its roughness `sigma_scale` times its own (which
+/// scales the d_e target of eq 17, a fraction of the roughness, without changing the
+/// pressures).
+struct Recorder<'a, S> {
     inner: &'a S,
+    inflate: f64,
+    sigma_scale: f64,
     asked: std::sync::Mutex<Vec<u64>>,
 }
 
-impl<S: SurfaceLaw> SurfaceLaw for Pessimist<'_, S> {
+impl<'a, S: SurfaceLaw> Recorder<'a, S> {
+    fn new(inner: &'a S, inflate: f64, sigma_scale: f64) -> Self {
+        Self {
+            inner,
+            inflate,
+            sigma_scale,
+            asked: std::sync::Mutex::new(Vec::new()),
+        }
+    }
+}
+
+impl<S: SurfaceLaw> SurfaceLaw for Recorder<'_, S> {
     type History = S::History;
     fn virgin(&self) -> S::History {
         self.inner.virgin()
@@ -297,9 +311,12 @@ impl<S: SurfaceLaw> SurfaceLaw for Pessimist<'_, S> {
             self.asked.lock().unwrap().push(d.to_bits());
         }
         let e = self.inner.pressure_estimate(d, history, path)?;
+        if self.inflate == 1.0 {
+            return Ok(e);
+        }
         Ok(contact_core::Estimate {
             value: e.value,
-            error: 1e8 * e.error.max(1e-12 * e.value.abs()),
+            error: self.inflate * e.error.max(1e-12 * e.value.abs()),
         })
     }
     fn load(&self, history: &S::History, d: f64) -> S::History {
@@ -312,7 +329,9 @@ impl<S: SurfaceLaw> SurfaceLaw for Pessimist<'_, S> {
         &self,
         history: &S::History,
     ) -> Result<contact_core::LengthScales, contact_core::LawError> {
-        self.inner.length_scales(history)
+        let mut s = self.inner.length_scales(history)?;
+        s.roughness *= self.sigma_scale;
+        Ok(s)
     }
     fn kinks(&self, history: &S::History) -> Vec<f64> {
         self.inner.kinks(history)
@@ -321,21 +340,26 @@ impl<S: SurfaceLaw> SurfaceLaw for Pessimist<'_, S> {
 
 /// eq 17's re-solves with a tighter energy integral start on the panels of the solve
 /// before, and each approach pressure is evaluated once per end of impact: the re-solves
-/// reuse the values (the same d, the same bits) instead of evaluating them again.
+/// reuse the values (the same d, the same bits) instead of evaluating them again. (A
+/// roughness reported 100 times smaller makes the d_e target 100 times tighter, beyond
+/// what the first solve's energy tolerance reaches, so the solve is repeated.)
 #[test]
 fn a_re_solve_of_eq_17_evaluates_no_separation_twice() {
     let gw = plastic(YieldModulus::AsPrinted);
-    let p = Pessimist {
-        inner: &gw,
-        asked: std::sync::Mutex::new(Vec::new()),
-    };
+    let p = Recorder::new(&gw, 1.0, 1e-2);
     let fast = Precision {
         d_e: 1e-5,
         ..Precision::default()
     };
     let end = end_of_impact(&p, &p.virgin(), 0.5, FILM, fast).unwrap();
-    // the estimate stays above the target: the solve was repeated (twice)
-    assert!(end.error > fast.d_e * SIGMA, "{:e}", end.error);
+    let plain = end_of_impact(&gw, &gw.virgin(), 0.5, FILM, fast).unwrap();
+    // the solve was repeated with a tighter energy integral: a smaller estimate
+    assert!(
+        end.error < 0.5 * plain.error,
+        "{:e} vs {:e}",
+        end.error,
+        plain.error
+    );
     let mut asked = p.asked.into_inner().unwrap();
     let n = asked.len();
     asked.sort_unstable();
@@ -347,6 +371,35 @@ fn a_re_solve_of_eq_17_evaluates_no_separation_twice() {
         n - asked.len()
     );
     // and the answer is the one of the plain surface
-    let plain = end_of_impact(&gw, &gw.virgin(), 0.5, FILM, fast).unwrap();
     assert!((end.d_e - plain.d_e).abs() <= fast.d_e * SIGMA);
+}
+
+/// Where the approach pressures' own errors alone exceed the d_e target, a tighter energy
+/// integral cannot meet it: eq 17 is not re-solved for it. A surface whose pressure errors
+/// are reported 1e8 times larger is asked for no more approach pressures than the plain
+/// surface, its estimate stays honest (above the target), and its d_e is the plain one.
+/// (Before, the two re-solves chased the pressures' noise with an energy tolerance down to
+/// 1e-12 of the first: a plausible MEMS scene took 60 s in accurate mode, against 0.9 s in
+/// the tighter reference mode.)
+#[test]
+fn eq_17_is_not_re_solved_for_an_error_only_the_pressures_can_reduce() {
+    let gw = plastic(YieldModulus::AsPrinted);
+    let fast = Precision {
+        d_e: 1e-5,
+        ..Precision::default()
+    };
+    let plain = Recorder::new(&gw, 1.0, 1.0);
+    let reference = end_of_impact(&plain, &plain.virgin(), 0.5, FILM, fast).unwrap();
+    let pessimist = Recorder::new(&gw, 1e8, 1.0);
+    let end = end_of_impact(&pessimist, &pessimist.virgin(), 0.5, FILM, fast).unwrap();
+    assert!(end.error > fast.d_e * SIGMA, "{:e}", end.error);
+    let (n_plain, n_pessimist) = (
+        plain.asked.into_inner().unwrap().len(),
+        pessimist.asked.into_inner().unwrap().len(),
+    );
+    assert!(
+        n_pessimist <= n_plain,
+        "{n_pessimist} approach pressures against the plain surface's {n_plain}"
+    );
+    assert!((end.d_e - reference.d_e).abs() <= fast.d_e * SIGMA);
 }
