@@ -28,6 +28,7 @@
 struct ReadmeDoctests;
 
 mod error;
+mod guide_data;
 mod laws;
 pub mod md;
 mod scales;

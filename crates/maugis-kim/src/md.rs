@@ -718,17 +718,15 @@ impl MdCurve {
 }
 
 /// ln lambda range of the turning-point guide table; outside it the wide search is used.
-const GUIDE_LN_LO: f64 = -0.06; // just above ln lambda_c = -0.0641
-const GUIDE_LN_HI: f64 = 9.3; // lambda ~ 1.1e4
-const GUIDE_N: usize = 512;
+pub(crate) const GUIDE_LN_LO: f64 = -0.06; // just above ln lambda_c = -0.0641
+pub(crate) const GUIDE_LN_HI: f64 = 9.3; // lambda ~ 1.1e4
+pub(crate) const GUIDE_N: usize = 512;
 
-/// ln s of the turning point on a grid of ln lambda (lambda > lambda_c), built once per
-/// process by the wide bracket search (about 2 ms). It only seeds the bracket: the turning
-/// point is still solved to 1e-14 in ln s, so results do not depend on the table.
-static TURNING_GUIDE: OnceLock<Vec<f64>> = OnceLock::new();
-
-/// ln s_t at grid point `i` of the turning-point guide (NaN where the search fails).
-fn turning_guide_entry(i: usize) -> f64 {
+/// ln s_t at grid point `i` of the turning-point guide (NaN where the search fails), by
+/// the wide bracket search: how `guide_data::TURNING` was made (test
+/// `the_committed_guides_are_the_solvers`, which also rewrites it).
+#[cfg(test)]
+pub(crate) fn turning_guide_entry(i: usize) -> f64 {
     let l = (GUIDE_LN_LO + (GUIDE_LN_HI - GUIDE_LN_LO) * i as f64 / (GUIDE_N - 1) as f64).exp();
     let f = |u: f64| Contact::at(l, u.exp()).d_delta_sign(l);
     bracket_sign_change(&f, 0.0, U_MIN, U_MAX)
@@ -745,8 +743,12 @@ fn turning_guide_entry(i: usize) -> f64 {
         .unwrap_or(f64::NAN)
 }
 
+/// ln s of the turning point on a grid of ln lambda (lambda > lambda_c), committed
+/// (`guide_data.rs`; solving it at start-up cost every process about 4 M instructions,
+/// with every thread waiting). It only seeds the bracket: the turning point is still
+/// solved to 1e-14 in ln s, so results do not depend on the table.
 fn guide() -> &'static [f64] {
-    TURNING_GUIDE.get_or_init(|| (0..GUIDE_N).map(turning_guide_entry).collect())
+    &crate::guide_data::TURNING
 }
 
 /// Interpolated ln s_t for lambda inside the guide table: 4-point Lagrange (cubic, the
@@ -780,16 +782,14 @@ fn lagrange4(x: f64, n: usize) -> (usize, [f64; 4]) {
 }
 
 /// Grid of the contact-solve guide: ln lambda and y = ln(Delta - Delta_j).
-const CG_L: (f64, f64, usize) = (-7.2, 7.2, 49);
-const CG_Y: (f64, f64, usize) = (-14.0, 10.0, 61);
+pub(crate) const CG_L: (f64, f64, usize) = (-7.2, 7.2, 49);
+pub(crate) const CG_Y: (f64, f64, usize) = (-14.0, 10.0, 61);
 
-/// ln s of the contact-branch solution on a grid of (ln lambda, ln(Delta - Delta_j)),
-/// built once per process by the bracketed solver (about 3000 solves, a few ms). Like the
-/// turning-point guide it only seeds Newton's method; results are solved to rounding.
-static CONTACT_GUIDE: OnceLock<Vec<f64>> = OnceLock::new();
-
-/// Row `i` (one lambda) of the contact-solve guide (NaN where a solve fails).
-fn contact_guide_row(i: usize) -> Vec<f64> {
+/// Row `i` (one lambda) of the contact-solve guide (NaN where a solve fails), by the
+/// bracketed solver: how `guide_data::CONTACT` was made (test
+/// `the_committed_guides_are_the_solvers`).
+#[cfg(test)]
+pub(crate) fn contact_guide_row(i: usize) -> Vec<f64> {
     let l = (CG_L.0 + (CG_L.1 - CG_L.0) * i as f64 / (CG_L.2 - 1) as f64).exp();
     let c = MdCurve::new(l).expect("grid lambda is valid");
     let dj = c.junction().delta;
@@ -802,8 +802,12 @@ fn contact_guide_row(i: usize) -> Vec<f64> {
         .collect()
 }
 
+/// ln s of the contact-branch solution on a grid of (ln lambda, ln(Delta - Delta_j)),
+/// committed (`guide_data.rs`; about 3000 bracketed solves, 17 M instructions at every
+/// start-up before). Like the turning-point guide it only seeds Newton's method; results
+/// are solved to rounding.
 fn contact_guide() -> &'static [f64] {
-    CONTACT_GUIDE.get_or_init(|| (0..CG_L.2).flat_map(contact_guide_row).collect())
+    &crate::guide_data::CONTACT
 }
 
 /// Estimate of ln s for lambda and Delta - Delta_j > 0, inside the guide: 4 x 4-point
@@ -874,5 +878,75 @@ fn bracket_sign_change(
         expand_bracket("sign change", ok, start, u0 + 2.0, Expansion::Linear, u_max)
             .ok()
             .flatten()
+    }
+}
+
+#[cfg(test)]
+mod guide_tests {
+    use super::*;
+
+    /// The committed file's text for the given guides: Rust's shortest round-trip form of
+    /// each value, NaN where a solve failed.
+    fn render(turning: &[f64], contact: &[f64]) -> String {
+        let list = |v: &[f64], per_row: usize| -> String {
+            v.chunks(per_row)
+                .map(|row| {
+                    let cells: Vec<String> = row
+                        .iter()
+                        .map(|x| {
+                            if x.is_nan() {
+                                "f64::NAN".to_owned()
+                            } else {
+                                format!("{x:?}")
+                            }
+                        })
+                        .collect();
+                    format!("    {},\n", cells.join(", "))
+                })
+                .collect()
+        };
+        format!(
+            "//! The Newton guides of `md.rs`, solved once and committed: ln s of the turning point on\n\
+             //! GUIDE_N points of ln lambda, and ln s of the contact-branch solution on CG_L x CG_Y\n\
+             //! points of (ln lambda, ln(Delta - Delta_j)). They only seed the solves, so results do\n\
+             //! not depend on them. Written by the test `the_committed_guides_are_the_solvers`\n\
+             //! (`STICTION_WRITE_GUIDES=1 cargo test -p maugis-kim --release the_committed_guides`);\n\
+             //! do not edit.\n\n\
+             #[rustfmt::skip]\n\
+             pub(crate) static TURNING: [f64; crate::md::GUIDE_N] = [\n{}];\n\n\
+             #[rustfmt::skip]\n\
+             pub(crate) static CONTACT: [f64; crate::md::CG_L.2 * crate::md::CG_Y.2] = [\n{}];\n",
+            list(turning, 4),
+            list(contact, 4)
+        )
+    }
+
+    /// The committed guides are what the solvers give today, to 1e-9 in ln s (they were
+    /// written on this platform to the last bit; another libm may differ in the last
+    /// digits, and a guide only seeds a solve), and fail exactly where the solvers fail.
+    #[test]
+    fn the_committed_guides_are_the_solvers() {
+        let turning: Vec<f64> = (0..GUIDE_N).map(turning_guide_entry).collect();
+        let contact: Vec<f64> = (0..CG_L.2).flat_map(contact_guide_row).collect();
+        if std::env::var_os("STICTION_WRITE_GUIDES").is_some() {
+            let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/guide_data.rs");
+            std::fs::write(path, render(&turning, &contact)).unwrap();
+            return;
+        }
+        for (name, solved, committed) in [
+            ("turning", &turning[..], &crate::guide_data::TURNING[..]),
+            ("contact", &contact[..], &crate::guide_data::CONTACT[..]),
+        ] {
+            assert_eq!(solved.len(), committed.len(), "{name} guide length");
+            for (i, (s, c)) in solved.iter().zip(committed).enumerate() {
+                assert_eq!(s.is_nan(), c.is_nan(), "{name} guide entry {i}: {s} vs {c}");
+                if !s.is_nan() {
+                    assert!((s - c).abs() <= 1e-9, "{name} guide entry {i}: {s} vs {c}");
+                }
+            }
+        }
+        // the guides really seed: a contact solve inside the grid uses the guess
+        assert!(contact_guess(2.0, 0.5).is_some());
+        assert!(turning_guess(2.0).is_some());
     }
 }
