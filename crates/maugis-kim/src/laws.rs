@@ -412,8 +412,11 @@ impl MaugisKim {
     /// from a table instead of solved, within [`crate::INTERPOLATION_ERROR`] of
     /// max(|F|, pi w R) (the solve everywhere else, and for the contact radius): a lookup
     /// costs about 440 instructions with its two logarithms against about 1300 for the
-    /// solve (callgrind, the paper's switch), plus the tiles a run solves once. What a rough
-    /// surface uses in fast mode.
+    /// solve (callgrind, the paper's switch), plus the tiles a run solves once. The
+    /// turning point (where a retracting sphere jumps out: the jump-out of
+    /// [`AdhesionLaw::jumps`] and the end of the retracting force) is read from a table in
+    /// ln lambda too, within 1e-12 of max(|Delta_t|, 1). What a rough surface uses in fast
+    /// mode.
     ///
     /// ```
     /// use contact_core::{AdhesionLaw, Path};
@@ -477,14 +480,19 @@ impl AdhesionLaw for MaugisKim {
     /// The interpolated law ([`MaugisKim::interpolated`]) where its error bound is within
     /// `rel_force`.
     fn within(&self, rel_force: f64) -> Option<std::sync::Arc<dyn AdhesionLaw + Send + Sync>> {
-        (crate::INTERPOLATION_ERROR <= rel_force)
+        (crate::INTERPOLATION_ERROR.max(crate::table::TURNING_ERROR) <= rel_force)
             .then(|| std::sync::Arc::new(self.interpolated()) as _)
     }
     fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
         let (sc, curve) = self.sphere(radius)?;
+        let turning = if self.table {
+            curve.turning_delta_interpolated()?
+        } else {
+            curve.turning_point()?.delta
+        };
         Ok(Jumps {
             jump_in: curve.jump_in_delta() * sc.interference,
-            jump_out: curve.turning_point()?.delta * sc.interference,
+            jump_out: turning * sc.interference,
         })
     }
     /// -z0: the rigid gap at the centre equals the Dugdale range (no turning point needed).

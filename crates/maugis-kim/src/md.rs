@@ -345,6 +345,16 @@ impl MdCurve {
         self.turning().map(|t| t.point)
     }
 
+    /// Delta_t of the turning point, read from a table within
+    /// [`crate::table::TURNING_ERROR`] of max(|Delta_t|, 1) where it holds lambda (lambda
+    /// more than e^0.5 above lambda_c, up to 2e4), solved elsewhere.
+    pub(crate) fn turning_delta_interpolated(&self) -> Result<f64, MkError> {
+        match crate::table::turning_delta(self.lambda) {
+            Some(d) => Ok(d),
+            None => Ok(self.turning_point()?.delta),
+        }
+    }
+
     /// Pull-off under displacement control: the turning point, where a retracting
     /// sphere jumps out (force: JKR limit -5/6).
     pub fn pull_off_displacement_control(&self) -> Result<MdPoint, MkError> {
@@ -659,8 +669,11 @@ impl MdCurve {
             Path::Approach => Ok(0.0),
             Path::Retract { from } if from < d_in => Ok(0.0),
             Path::Retract { .. } => {
-                let t = self.turning_point()?;
-                if delta < t.delta {
+                let t_delta = match table.then(|| crate::table::turning_delta(self.lambda)) {
+                    Some(Some(d)) => d,
+                    _ => self.turning_point()?.delta,
+                };
+                if delta < t_delta {
                     Ok(0.0)
                 } else {
                     self.stable_force(delta, table)
