@@ -283,4 +283,30 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         );
         Ok(k)
     }
+
+    /// One entry of [`Self::kinks`] without building the list: delta_res needs only the
+    /// plastic state (the breakpoint search evaluates each kind about 14 times per
+    /// pressure), and the adhesion law is asked only for its own kinds.
+    fn kink(&self, i: usize, history: AsperityHistory) -> Result<Option<f64>, LawError> {
+        let st = self.plasticity.state(history.delta_max);
+        let mut i = i;
+        if self.plasticity.delta_cp().is_finite() {
+            if i == 0 {
+                return Ok((st.delta_res > 0.0).then_some(st.delta_res));
+            }
+            i -= 1;
+        }
+        let plastic = self.plasticity.kinks(&st);
+        if let Some(k) = plastic.get(i) {
+            return Ok(*k);
+        }
+        i -= plastic.len();
+        Ok(self
+            .adhesion
+            .kinks(st.r_res)?
+            .get(i)
+            .copied()
+            .flatten()
+            .map(|x| x + st.delta_res))
+    }
 }

@@ -237,3 +237,57 @@ fn fits_near_yield_onset_make_reloading_stiffer_than_virgin_loading() {
     let (v, r) = works(&asp, 3.0 * dcp);
     assert!(r < v * 0.9, "omega 3: reload {r} virgin {v}");
 }
+
+/// `kink(i)` is the i-th entry of `kinks` for every pairing of the built-in plasticity
+/// laws (elastic, Etsion-Kadin, Kogut-Etsion, whose kink list has an entry of its own) and
+/// adhesion laws (Maugis-Kim with its junction kind, DMT with its Hertz onset), at
+/// histories below, at and far beyond yield, and past the end of the list.
+#[test]
+fn one_kink_is_the_entry_of_the_list() {
+    use asperity_plastic::KogutEtsion;
+    use maugis_kim::Dmt;
+    let (ek, mk, pair) = ru();
+    let ke = KogutEtsion::new(&pair, YieldModulus::Composite).unwrap();
+    let dmt = Dmt::new(DugdaleParams::for_pair(
+        &pair,
+        paper::WORK_OF_ADHESION,
+        paper::Z0,
+    ))
+    .unwrap();
+    let elastic = Elastic::new(paper::RADIUS).unwrap();
+    let dcp = ek.delta_cp();
+    fn check(asp: &impl AsperityModel, dcp: f64, name: &str) -> usize {
+        let mut present = 0;
+        for omega in [0.0, 0.5, 1.0, 1.0 + 1e-9, 3.0, 6.0, 40.0, 110.0, 1e4] {
+            let h = AsperityHistory {
+                delta_max: omega * dcp,
+            };
+            let list = asp.kinks(h).unwrap();
+            for i in 0..list.len() + 2 {
+                let one = asp.kink(i, h).unwrap();
+                assert_eq!(
+                    one,
+                    list.get(i).copied().flatten(),
+                    "{name}: kink {i} at omega {omega}"
+                );
+                present += usize::from(one.is_some());
+            }
+        }
+        present
+    }
+    let n = [
+        check(&ElastoPlasticAsperity::new(ek, mk), dcp, "EK + MK"),
+        check(&ElastoPlasticAsperity::new(ke, mk), dcp, "KE + MK"),
+        check(&ElastoPlasticAsperity::new(ek, dmt), dcp, "EK + DMT"),
+        check(&ElastoPlasticAsperity::new(ke, dmt), dcp, "KE + DMT"),
+        check(
+            &ElastoPlasticAsperity::new(elastic, mk),
+            dcp,
+            "elastic + MK",
+        ),
+    ];
+    // the comparison is not vacuous: every plastic pairing has kinks at some history (the
+    // elastic asperity has none here: no delta_res, and Maugis-Kim's junction is a kink
+    // only at lambda <= lambda_c, below the paper's lambda)
+    assert!(n[..4].iter().all(|&k| k > 0), "{n:?}");
+}

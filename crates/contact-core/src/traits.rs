@@ -357,6 +357,14 @@ pub trait AsperityModel {
         let _ = history;
         Ok(Vec::new())
     }
+
+    /// The `i`-th entry of [`Self::kinks`] alone (`None` where that kind is absent or the
+    /// list is shorter): what a search for one kind of kink over asperity heights
+    /// evaluates many times. Override when one kink is cheaper than the list; it must
+    /// equal `self.kinks(history)?.get(i).copied().flatten()`.
+    fn kink(&self, i: usize, history: AsperityHistory) -> Result<Option<f64>, LawError> {
+        Ok(self.kinks(history)?.get(i).copied().flatten())
+    }
 }
 
 /// A value with its error estimate (same units).

@@ -372,14 +372,11 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
             .max(self.law(edge, d, a.kinks(hist_eff(edge)))?.len());
         for i in 0..n_kinks {
             let g = |h: f64| -> Result<f64, GwError> {
-                let k = self.law(h, d, a.kinks(hist_eff(h)))?;
+                let k = self.law(h, d, a.kink(i, hist_eff(h)))?;
                 // an asperity without this kink (None or absent: delta_res before yield,
                 // the junction above lambda_c) counts as below it; above the yield
                 // height h - d - delta_res increases with h
-                Ok(k.get(i)
-                    .copied()
-                    .flatten()
-                    .map_or(-self.sigma_s(), |x| h - d - x))
+                Ok(k.map_or(-self.sigma_s(), |x| h - d - x))
             };
             if let Some(h_k) = self.edge("kink height", g, edge, top)? {
                 points.push(h_k);
