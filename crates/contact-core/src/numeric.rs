@@ -833,7 +833,7 @@ pub fn integrate<E: From<CoreError>>(
     rule: &AdaptiveRule,
     tol: QuadTolerance,
 ) -> Result<Integral, E> {
-    integrate_panels(what, f, breaks, edge_substitution, rule, tol).map(|(i, _)| i)
+    integrate_seq(what, f, breaks, edge_substitution, rule, tol, false).map(|(i, _)| i)
 }
 
 /// An accepted panel of [`integrate_panels`], in the integration variable: its ends with
@@ -947,11 +947,26 @@ impl Interpolant {
 /// integration variable: tau on an edge-substituted first interval).
 pub fn integrate_panels<E: From<CoreError>>(
     what: &'static str,
+    f: impl FnMut(f64) -> Result<f64, E>,
+    breaks: &[f64],
+    edge_substitution: bool,
+    rule: &AdaptiveRule,
+    tol: QuadTolerance,
+) -> Result<(Integral, Vec<PanelNodes>), E> {
+    integrate_seq(what, f, breaks, edge_substitution, rule, tol, true)
+}
+
+/// The sequential quadrature, with the accepted panels only when `nodes` (a caller that
+/// wants the integral alone, such as every pressure of a rough surface, does not pay for
+/// copying each panel's points).
+fn integrate_seq<E: From<CoreError>>(
+    what: &'static str,
     mut f: impl FnMut(f64) -> Result<f64, E>,
     breaks: &[f64],
     edge_substitution: bool,
     rule: &AdaptiveRule,
     tol: QuadTolerance,
+    nodes: bool,
 ) -> Result<(Integral, Vec<PanelNodes>), E> {
     let map = Substitution {
         breaks,
@@ -960,13 +975,15 @@ pub fn integrate_panels<E: From<CoreError>>(
     integrate_core(
         what,
         &mut |pts: &[(usize, f64)]| {
-            pts.iter()
-                .map(|&(k, t)| map.eval(what, &mut f, k, t))
-                .collect()
+            crate::par::collect_exact(
+                pts.iter().map(|&(k, t)| map.eval(what, &mut f, k, t)),
+                pts.len(),
+            )
         },
         map,
         rule,
         tol,
+        nodes,
     )
 }
 
@@ -994,6 +1011,7 @@ pub fn integrate_panels_par<E: From<CoreError> + Send>(
         map,
         rule,
         tol,
+        true,
     )
 }
 
@@ -1105,6 +1123,7 @@ fn integrate_core<E: From<CoreError>>(
     map: Substitution<'_>,
     rule: &AdaptiveRule,
     tol: QuadTolerance,
+    want_nodes: bool,
 ) -> Result<(Integral, Vec<PanelNodes>), E> {
     let breaks = map.breaks;
     let noise = tol.noise.max(NOISE);
@@ -1115,9 +1134,11 @@ fn integrate_core<E: From<CoreError>>(
     };
     // the starting panels of every interval: (k, a, b) and the points where the integrand
     // is needed at their ends
-    let mut pieces: Vec<(usize, f64, f64)> = Vec::new();
-    let mut end_points: Vec<(usize, f64)> = Vec::new();
-    let mut end_index: Vec<usize> = Vec::new(); // first end of each piece in end_points
+    // one piece per interval unless a maximum width cuts them
+    let n = breaks.len().saturating_sub(1);
+    let mut pieces: Vec<(usize, f64, f64)> = Vec::with_capacity(n);
+    let mut end_points: Vec<(usize, f64)> = Vec::with_capacity(2 * n);
+    let mut end_index: Vec<usize> = Vec::with_capacity(n); // first end of each piece in end_points
     for k in 0..breaks.len().saturating_sub(1) {
         let (lo, hi) = if map.substituted(k) {
             (0.0, 1.0)
@@ -1156,16 +1177,14 @@ fn integrate_core<E: From<CoreError>>(
     let end_values = eval(&end_points)?;
     // the whole-panel rule and the split nodes of every starting panel, in one batch
     let per_piece = rule.gl.len() + rule.halves.len() + 1;
-    let inner: Vec<(usize, f64)> = pieces
-        .iter()
-        .flat_map(|&(k, a, b)| {
-            rule.gl
-                .mapped(a, b)
-                .map(|(t, _)| t)
-                .chain(split_nodes(rule, (a, b)))
-                .map(move |t| (k, t))
-        })
-        .collect();
+    let mut inner: Vec<(usize, f64)> = Vec::with_capacity(pieces.len() * per_piece);
+    inner.extend(pieces.iter().flat_map(|&(k, a, b)| {
+        rule.gl
+            .mapped(a, b)
+            .map(|(t, _)| t)
+            .chain(split_nodes(rule, (a, b)))
+            .map(move |t| (k, t))
+    }));
     let inner_values = eval(&inner)?;
     let mut panels: Vec<Panel> = pieces
         .iter()
@@ -1233,6 +1252,16 @@ fn integrate_core<E: From<CoreError>>(
             let (value, error) = live.iter().fold((0.0, 0.0), |s, p| {
                 (s.0 + p.left + p.right, s.1 + error_of(p))
             });
+            if !want_nodes {
+                return Ok((
+                    Integral {
+                        value,
+                        error,
+                        evaluations,
+                    },
+                    Vec::new(),
+                ));
+            }
             let nodes = live
                 .iter()
                 .map(|p| {
