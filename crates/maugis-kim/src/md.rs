@@ -669,8 +669,16 @@ impl MdCurve {
             Path::Approach => Ok(0.0),
             Path::Retract { from } if from < d_in => Ok(0.0),
             Path::Retract { .. } => {
+                // the table's Delta_t, except within its error bound of it, where the side
+                // is decided by the solved turning point (a point the table puts on the
+                // stable branch just below the true turning point has no stable solution)
                 let t_delta = match table.then(|| crate::table::turning_delta(self.lambda)) {
-                    Some(Some(d)) => d,
+                    Some(Some(d))
+                        if (delta - d).abs()
+                            > 4.0 * crate::table::TURNING_ERROR * d.abs().max(1.0) =>
+                    {
+                        d
+                    }
                     _ => self.turning_point()?.delta,
                 };
                 if delta < t_delta {

@@ -202,6 +202,7 @@ pub(crate) fn turning_delta(lambda: f64) -> Option<f64> {
 mod tests {
     use super::*;
     use crate::md::LAMBDA_CRITICAL;
+    use contact_core::Path;
 
     /// Random points over the turning table's range: the interpolated Delta_t against the
     /// exact solve, relative to max(|Delta_t|, 1), within TURNING_ERROR; None outside it.
@@ -289,6 +290,40 @@ mod tests {
         assert!(force(1e-3, 1.0).is_none());
         assert!(force(2.0, 1e-9).is_none());
         assert!(force(2.0, 0.0).is_none());
+    }
+
+    /// A retracting sphere between the table's Delta_t and the solved one gets the
+    /// solver's answer (detached below the solved turning point): near its Delta_t the
+    /// table defers to the solve. Without that, such a point, a few 1e-14 below the
+    /// turning point, was put on the stable branch (Fbar -0.835 against 0). The points are
+    /// found where the table errs low, so that they lie below the solved turning point.
+    #[test]
+    fn the_retracting_force_next_to_the_tables_turning_point_is_the_solvers() {
+        let mut checked = 0;
+        for k in 0..4000 {
+            let lx = TX0 + 2.5 * TH + k as f64 * 0.002_137;
+            if lx >= TX0 + (TN - 5) as f64 * TH {
+                break;
+            }
+            let curve = MdCurve::new(lx.exp()).unwrap();
+            let exact = curve.turning_point().unwrap().delta;
+            let table = turning_delta(lx.exp()).unwrap();
+            if !(table < exact) {
+                continue;
+            }
+            let mid = 0.5 * (table + exact);
+            if !(mid > table && mid < exact) {
+                continue;
+            }
+            let path = Path::Retract { from: 10.0 };
+            let f = curve.force_interpolated(mid, path).unwrap();
+            assert_eq!(f, curve.force(mid, path).unwrap(), "ln lambda {lx}");
+            checked += 1;
+        }
+        assert!(
+            checked > 10,
+            "{checked} points between the two turning points"
+        );
     }
 
     #[test]
