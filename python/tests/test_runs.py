@@ -11,20 +11,20 @@ import stiction
 # the paper's switch (Fig 4) in the fast mode, recorded from `stiction switch --accuracy
 # fast --format json`: pull-out pressure (Pa) of cycles 1-10 and d_e (m) of cycle 1.
 # A regression record of the binding against the command line, bit for bit; rerecorded
-# when the numerics change on purpose (last: issue 27's Maugis-Kim force table, read in
-# fast mode, which moved them by at most 7e-12 relative, the fast mode's target being 1e-4;
-# before it the declared yield crossings, 5e-8).
+# when the numerics change on purpose (last: issue 27's turning-point table, read in fast
+# mode, which moved them by at most 7.4e-15 relative; before it the Maugis-Kim force table,
+# 7e-12, the fast mode's target being 1e-4; before that the declared yield crossings, 5e-8).
 PAPER_FAST_PULL_OUTS = [
-    1810878.572133477,
+    1810878.5721334768,
     2245376.6821873104,
-    2381125.560051469,
-    2424907.891359318,
-    2439154.8747458262,
-    2443803.7915484235,
-    2445322.129952595,
-    2445818.164059395,
+    2381125.5600514645,
+    2424907.8913593176,
+    2439154.8747458267,
+    2443803.7915484225,
+    2445322.1299525825,
+    2445818.164059377,
     2445980.2314572395,
-    2446033.1847804417,
+    2446033.184780436,
 ]
 PAPER_FAST_D_E_1 = 9.624076812414802e-09
 
