@@ -204,17 +204,22 @@ mod tests {
     use crate::md::LAMBDA_CRITICAL;
     use contact_core::Path;
 
-    /// Random points over the turning table's range: the interpolated Delta_t against the
-    /// exact solve, relative to max(|Delta_t|, 1), within TURNING_ERROR; None outside it.
-    #[test]
-    fn the_turning_table_holds_its_bound() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut uniform = || {
+    /// A repeatable stream of uniform numbers in [0, 1) (xorshift64 from `seed` != 0).
+    fn uniforms(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
             (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        }
+    }
+
+    /// Random points over the turning table's range: the interpolated Delta_t against the
+    /// exact solve, relative to max(|Delta_t|, 1), within TURNING_ERROR; None outside it.
+    #[test]
+    fn the_turning_table_holds_its_bound() {
+        let mut uniform = uniforms(0x9e37_79b9_7f4a_7c15);
         let (x_lo, x_hi) = (TX0 + 2.0 * TH, TX0 + (TN - 4) as f64 * TH);
         let mut worst = (0.0f64, 0.0f64);
         for k in 0..20_000 {
@@ -250,13 +255,7 @@ mod tests {
     /// relative to max(|Fbar|, 1), within MAX_ERROR; and None exactly where promised.
     #[test]
     fn the_table_holds_its_bound_over_the_whole_domain() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut uniform = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut uniform = uniforms(0x2545_f491_4f6c_dd1d);
         let (x_lo, x_hi) = (X0 + 2.0 * H, X0 + (NX - 4) as f64 * H);
         let (y_lo, y_hi) = (Y0 + 2.0 * H, Y0 + (NY - 4) as f64 * H);
         let mut errors = Vec::new();
