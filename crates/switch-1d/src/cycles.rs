@@ -883,6 +883,10 @@ pub fn run_cycles<S: SurfaceLaw>(
     let mut loading = Vec::new();
     // the history the last cycle started from: a cycle starting from the same one repeats it
     let mut last_start: Option<S::History> = None;
+    // the end of impact of the next cycle, found beside this cycle's unloading (it needs
+    // only the history after this impact, which unloading does not change): computed as
+    // it would be in its own cycle, so the same to the bit
+    let mut next_end: Option<(S::History, Result<EndOfImpact, SwitchError>)> = None;
     for k in 1..=options.cycles {
         let scale = surface.length_scales(&hist)?.roughness;
         let (end, new_hist, unloading) = match cycles.last() {
@@ -891,23 +895,48 @@ pub fn run_cycles<S: SurfaceLaw>(
             }
             prev => {
                 let guess = prev.map(|c| c.end.d_e);
-                let end = end_of_impact_near(
-                    surface,
-                    &hist,
-                    energy,
-                    impact.film,
-                    options.precision,
-                    guess,
-                )?;
+                let end = match next_end.take() {
+                    Some((from, end)) if from == hist => end?,
+                    _ => end_of_impact_near(
+                        surface,
+                        &hist,
+                        energy,
+                        impact.film,
+                        options.precision,
+                        guess,
+                    )?,
+                };
                 let new_hist = surface.load(&hist, end.d_e);
-                let unloading = unload(
-                    surface,
-                    &new_hist,
-                    end.d_e,
-                    options.unloading_points,
-                    options.precision,
-                )?;
-                (end, new_hist, unloading)
+                // a next cycle that starts from a changed history needs its own eq 17; one
+                // that starts from the same history repeats this cycle
+                let ahead = k < options.cycles && new_hist != hist;
+                let (unloading, ahead_end) = contact_core::par::join(
+                    || {
+                        unload(
+                            surface,
+                            &new_hist,
+                            end.d_e,
+                            options.unloading_points,
+                            options.precision,
+                        )
+                    },
+                    || {
+                        ahead.then(|| {
+                            end_of_impact_near(
+                                surface,
+                                &new_hist,
+                                energy,
+                                impact.film,
+                                options.precision,
+                                Some(end.d_e),
+                            )
+                        })
+                    },
+                );
+                // an error of the next cycle's eq 17 belongs to that cycle: reported only
+                // if the run gets there
+                next_end = ahead_end.map(|e| (new_hist.clone(), e));
+                (end, new_hist, unloading?)
             }
         };
         last_start = Some(hist.clone());
