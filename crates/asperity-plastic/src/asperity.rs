@@ -218,6 +218,13 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         self.plasticity.delta_cp()
     }
 
+    /// The adhesion law's bound on the largest effective sphere the state presents
+    /// ([`PlasticityLaw::radius_bound`]); the bounded reload only caps compression.
+    fn max_tension(&self, history: AsperityHistory) -> Option<f64> {
+        let state = self.plasticity.state(history.delta_max);
+        self.adhesion.max_tension(self.plasticity.radius_bound(&state)?)
+    }
+
     fn radius(&self) -> f64 {
         self.plasticity.radius()
     }

@@ -286,6 +286,12 @@ impl PlasticityLaw for EtsionKadin {
                 * Self::shape(self.fit.c2(omega), x)
     }
 
+    /// R_eff moves monotonically from R_res (x = 0) to its value at x = 1 (eq 12's
+    /// shape f is monotone from 0 to 1), so the larger end bounds it.
+    fn radius_bound(&self, state: &PlasticState) -> Option<f64> {
+        Some(state.r_res.max(self.effective_radius(state, state.delta_max)))
+    }
+
     /// The finite-element range of eqs 4-5 (Etsion, Kligerman & Kadin 2005): 1 to 110.
     fn fit_range(&self) -> Option<(f64, f64)> {
         Some((1.0, FIT_RANGE_MAX))
@@ -343,6 +349,9 @@ impl PlasticityLaw for Elastic {
     }
     fn effective_radius(&self, state: &PlasticState, _delta: f64) -> f64 {
         state.r_res
+    }
+    fn radius_bound(&self, state: &PlasticState) -> Option<f64> {
+        Some(state.r_res)
     }
 }
 

@@ -291,3 +291,47 @@ fn one_kink_is_the_entry_of_the_list() {
     // only at lambda <= lambda_c, below the paper's lambda)
     assert!(n[..4].iter().all(|&k| k > 0), "{n:?}");
 }
+
+/// The tension bound of a plastically deformed asperity holds on every path that does not
+/// load it further (retraction from delta_max and any reload up to it), for both
+/// plasticity laws, both readings of eq 1 and interferences up to the fits' end and
+/// beyond; and it is the adhesion law's bound on the larger end of eq 12's radius, so it
+/// follows R_res as the tip flattens.
+#[test]
+fn no_unloading_asperity_pulls_harder_than_its_bound() {
+    use asperity_plastic::KogutEtsion;
+    for modulus in [YieldModulus::Composite, YieldModulus::AsPrinted] {
+        let (ek, mk, pair) = ru_with(modulus);
+        let ke = KogutEtsion::new(&pair, modulus).unwrap();
+        let dcp = ek.delta_cp();
+        let laws: [(&str, Box<dyn AsperityModel>); 2] = [
+            ("etsion_kadin", Box::new(ElastoPlasticAsperity::new(ek, mk))),
+            ("kogut_etsion", Box::new(ElastoPlasticAsperity::new(ke, mk))),
+        ];
+        for (name, asp) in &laws {
+            for omega in [0.5, 1.0, 1.5, 4.0, 16.0, 60.0, 110.0, 300.0] {
+                let dmax = omega * dcp;
+                let hist = AsperityHistory { delta_max: dmax };
+                let bound = asp.max_tension(hist).unwrap();
+                let r_res = asp.plastic_state(hist).r_res;
+                // never below the adhesion law's bound on R_res itself
+                assert!(bound >= mk.max_tension(r_res).unwrap(), "{name} {omega}");
+                let j = asp.jumps(hist).unwrap();
+                let mut least = f64::INFINITY;
+                for k in 0..=2000 {
+                    let d = j.jump_out + (dmax - j.jump_out) * k as f64 / 2000.0;
+                    let back = asp.force(d, hist, Path::Retract { from: dmax }).unwrap();
+                    let again = asp.force(d, hist, Path::Approach).unwrap();
+                    least = least.min(back).min(again);
+                }
+                assert!(
+                    -least <= bound,
+                    "{name} {modulus:?} omega {omega}: {least} beyond {bound}"
+                );
+                // the bound is the DMT limit 2 pi w R_eff: at least 3/4 of it is reached
+                // (the pull-off lies between 1.5 and 2 pi w R_eff)
+                assert!(-least >= 0.7 * bound, "{name} {omega}: {least} vs {bound}");
+            }
+        }
+    }
+}

@@ -81,6 +81,17 @@ pub trait AdhesionLaw {
         let _ = rel_force;
         None
     }
+
+    /// An upper bound T (N, >= 0) on the tension of a sphere of `radius` (m) anywhere on
+    /// the law's curves: -F(delta, path) <= T for every interference and path (for a
+    /// Maugis-Dugdale law the load-controlled pull-off, at most 2 pi w R, the DMT limit).
+    /// A rough surface uses it to end a pull-out scan once no asperity left in contact can
+    /// pull harder than what was found. By default None (unknown): the scan runs to the
+    /// end.
+    fn max_tension(&self, radius: f64) -> Option<f64> {
+        let _ = radius;
+        None
+    }
 }
 
 /// Deformed state of an asperity after loading to `delta_max` (paper eqs 4-5).
@@ -129,6 +140,15 @@ pub trait PlasticityLaw {
     /// `delta` (m) (paper eq 12); equals `state.r_res` at and below `state.delta_res`.
     fn effective_radius(&self, state: &PlasticState, delta: f64) -> f64;
 
+    /// The largest effective radius (m) an asperity in `state` presents on any path that
+    /// does not load it further (between delta_res and delta_max), or None if the law
+    /// does not know it (the default). Bounds the tension of an unloading asperity
+    /// ([`AdhesionLaw::max_tension`] on that radius).
+    fn radius_bound(&self, state: &PlasticState) -> Option<f64> {
+        let _ = state;
+        None
+    }
+
     /// Values of delta_max (m), besides delta_CP, at which the state or the loading force
     /// jumps or has a kink (a regime boundary of a piecewise fit, such as omega = 6 of
     /// Kogut-Etsion). Declared breaks are split points of the height quadrature, which then
@@ -163,6 +183,9 @@ impl<T: AdhesionLaw + ?Sized> AdhesionLaw for &T {
     fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
         (**self).force(radius, delta, path)
     }
+    fn max_tension(&self, radius: f64) -> Option<f64> {
+        (**self).max_tension(radius)
+    }
     fn contact_radius(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
         (**self).contact_radius(radius, delta, path)
     }
@@ -180,6 +203,9 @@ impl<T: AdhesionLaw + ?Sized> AdhesionLaw for &T {
 impl<T: PlasticityLaw + ?Sized> PlasticityLaw for &T {
     fn radius(&self) -> f64 {
         (**self).radius()
+    }
+    fn radius_bound(&self, state: &PlasticState) -> Option<f64> {
+        (**self).radius_bound(state)
     }
     fn delta_cp(&self) -> f64 {
         (**self).delta_cp()
@@ -209,6 +235,9 @@ macro_rules! plasticity_through {
         impl<T: PlasticityLaw + ?Sized> PlasticityLaw for $ptr<T> {
             fn radius(&self) -> f64 {
                 (**self).radius()
+            }
+            fn radius_bound(&self, state: &PlasticState) -> Option<f64> {
+                (**self).radius_bound(state)
             }
             fn delta_cp(&self) -> f64 {
                 (**self).delta_cp()
@@ -240,6 +269,9 @@ macro_rules! adhesion_through {
         impl<T: AdhesionLaw + ?Sized> AdhesionLaw for $ptr<T> {
             fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
                 (**self).force(radius, delta, path)
+            }
+            fn max_tension(&self, radius: f64) -> Option<f64> {
+                (**self).max_tension(radius)
             }
             fn contact_radius(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
                 (**self).contact_radius(radius, delta, path)
@@ -365,6 +397,14 @@ pub trait AsperityModel {
     fn kink(&self, i: usize, history: AsperityHistory) -> Result<Option<f64>, LawError> {
         Ok(self.kinks(history)?.get(i).copied().flatten())
     }
+
+    /// An upper bound (N, >= 0) on the tension of an asperity with this `history` on any
+    /// path that does not load it beyond `history.delta_max` (-F <= bound), or None if
+    /// unknown (the default). See [`AdhesionLaw::max_tension`].
+    fn max_tension(&self, history: AsperityHistory) -> Option<f64> {
+        let _ = history;
+        None
+    }
 }
 
 /// A value with its error estimate (same units).
@@ -448,5 +488,19 @@ pub trait SurfaceLaw: Sync {
     fn kinks(&self, history: &Self::History) -> Vec<f64> {
         let _ = history;
         Vec::new()
+    }
+
+    /// A bound B (Pa, >= 0) on the tension at every separation from `d` (m) outward on
+    /// `path`: p(d') >= -B for all d' >= d, or None if the law cannot bound it (the
+    /// default). A pull-out search stops sampling once B is below the tension it has
+    /// already found: nothing further out can pull harder.
+    fn tension_bound(
+        &self,
+        d: f64,
+        history: &Self::History,
+        path: Path,
+    ) -> Result<Option<f64>, LawError> {
+        let _ = (d, history, path);
+        Ok(None)
     }
 }

@@ -87,6 +87,10 @@ impl AdhesionLaw for Hertz {
             jump_out: 0.0,
         })
     }
+    /// No adhesion: never tensile.
+    fn max_tension(&self, _radius: f64) -> Option<f64> {
+        Some(0.0)
+    }
 }
 
 /// Derjaguin-Muller-Toporov with a Dugdale interaction of range z0, the lambda -> 0 limit
@@ -140,7 +144,16 @@ impl AdhesionLaw for Dmt {
     fn kinks(&self, _radius: f64) -> Result<Vec<Option<f64>>, LawError> {
         Ok(vec![Some(0.0)])
     }
+    /// 2 pi w R: the whole Dugdale pull, reached at delta = 0.
+    fn max_tension(&self, radius: f64) -> Option<f64> {
+        Some(TENSION_MARGIN * 2.0 * PI * self.p.work_of_adhesion * radius)
+    }
 }
+
+/// Relative headroom of the tension bounds ([`AdhesionLaw::max_tension`]) over their
+/// analytic values: rounding, and the interpolation table's error (at most
+/// [`crate::INTERPOLATION_ERROR`] of max(|Fbar|, 1)), stay far below it.
+const TENSION_MARGIN: f64 = 1.0 + 1e-6;
 
 /// Johnson-Kendall-Roberts, the lambda -> infinity limit. Nondimensionally (eq 7)
 /// Fbar = A^3 - sqrt(6) A^(3/2), Delta = A^2 - (2/3) sqrt(6 A); stable for
@@ -325,6 +338,13 @@ impl AdhesionLaw for Jkr {
             jump_out: Self::turning_delta() * sc.interference,
         })
     }
+    /// The load-controlled pull-off 3/2 pi w R: Fbar = A^3 - sqrt(6) A^(3/2) is least
+    /// where A^(3/2) = sqrt(6)/2, Fbar = -3/2.
+    fn max_tension(&self, radius: f64) -> Option<f64> {
+        self.scales(radius)
+            .ok()
+            .map(|sc| TENSION_MARGIN * 1.5 * sc.force)
+    }
     /// The JKR contact radius a = A (pi w R^2 / K)^(1/3), A = y^2 of the stable branch;
     /// 0 when detached.
     fn contact_radius(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
@@ -499,6 +519,13 @@ impl AdhesionLaw for MaugisKim {
     fn jump_in(&self, _radius: f64) -> Result<f64, LawError> {
         Ok(-self.p.z0)
     }
+    /// 2 pi w R, the DMT limit of the load-controlled pull-off, which falls to 3/2 pi w R
+    /// as lambda grows: the least force of the stable branch (and of the non-contact
+    /// branch, whose Dugdale pull is at most the DMT one) over every lambda
+    /// (test `no_force_is_more_tensile_than_the_bound`).
+    fn max_tension(&self, radius: f64) -> Option<f64> {
+        Some(TENSION_MARGIN * 2.0 * PI * self.p.work_of_adhesion * radius)
+    }
     /// The Maugis-Dugdale contact radius a = A (pi w R^2 / K)^(1/3) of the stable point
     /// (eqs 7-9); 0 detached and on the non-contact branch.
     fn contact_radius(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
@@ -594,5 +621,71 @@ mod tests {
         }
         assert_eq!(cbrt_positive(0.0), 0.0);
         assert!(cbrt_positive(f64::NAN).is_nan());
+    }
+
+    /// The tension bounds hold: no force of a law, on approach or on retraction from
+    /// anywhere, pulls harder than `max_tension` (Maugis-Kim exact and from its table over
+    /// lambda from 0.01 to 1e4; JKR; DMT), and the Maugis-Kim bound is tight in the DMT
+    /// limit (the load-controlled pull-off approaches 2 pi w R as lambda falls).
+    #[test]
+    fn no_force_is_more_tensile_than_the_bound() {
+        use super::{Dmt, DugdaleParams, JkrParams, MaugisKim};
+        use contact_core::{AdhesionLaw, Path};
+        let p = DugdaleParams {
+            k: 1e11,
+            work_of_adhesion: 1.0,
+            z0: 0.2e-9,
+        };
+        let mk = MaugisKim::new(p).unwrap();
+        let laws: Vec<(&str, Box<dyn AdhesionLaw>)> = vec![
+            ("maugis_kim", Box::new(mk)),
+            ("maugis_kim table", Box::new(mk.interpolated())),
+            ("dmt", Box::new(Dmt::new(p).unwrap())),
+            (
+                "jkr",
+                Box::new(
+                    Jkr::new(JkrParams {
+                        k: 1e11,
+                        work_of_adhesion: 1.0,
+                    })
+                    .unwrap(),
+                ),
+            ),
+        ];
+        let mut tightest = 0.0_f64;
+        for (name, law) in &laws {
+            // radii with lambda from about 0.01 to 1e4 (lambda ~ R^(1/3))
+            for i in 0..=40 {
+                let lambda = 10f64.powf(-2.0 + 6.0 * i as f64 / 40.0);
+                let radius = (lambda / mk.lambda(1.0)).powi(3);
+                let bound = law.max_tension(radius).unwrap();
+                let scale = mk.scales(radius).unwrap().interference;
+                let j = law.jumps(radius).unwrap();
+                let mut least = f64::INFINITY;
+                for from in [j.jump_in, 0.0, 0.5 * scale, 3.0 * scale, 30.0 * scale] {
+                    for k in 0..=400 {
+                        let d = j.jump_out.min(j.jump_in) - 0.5 * scale
+                            + (from - j.jump_out.min(j.jump_in) + scale) * k as f64 / 400.0;
+                        for path in [Path::Approach, Path::Retract { from }] {
+                            if matches!(path, Path::Retract { from }
+                                if d > from)
+                            {
+                                continue;
+                            }
+                            least = least.min(law.force(radius, d, path).unwrap());
+                        }
+                    }
+                }
+                assert!(
+                    -least <= bound,
+                    "{name}: lambda {lambda}: force {least} beyond the bound {bound}"
+                );
+                if *name == "maugis_kim" {
+                    tightest = tightest.max(-least / bound);
+                }
+            }
+        }
+        // at lambda = 0.01 the pull-off is within a few percent of the DMT 2 pi w R
+        assert!(tightest > 0.95, "tightest {tightest}");
     }
 }

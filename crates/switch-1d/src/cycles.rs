@@ -535,7 +535,8 @@ pub fn unload<S: SurfaceLaw>(
     let reach = surface.reach(history, path)?;
     let scales = surface.length_scales(history)?;
     let grid = pull_out_grid(d_e, reach, scales);
-    let ys = par::map(&grid, |&d| surface.pressure_scan(d, history, path))?;
+    let ys = scan(surface, history, path, &grid)?;
+    let grid = &grid[..ys.len()];
     // the refinement's estimates by the bits of x: the minimum's error estimate is then
     // the one evaluated with its value, not a second evaluation
     let mut refined: Memo = Memo::default();
@@ -549,7 +550,7 @@ pub fn unload<S: SurfaceLaw>(
                 .insert(x.to_bits(), e);
             Ok::<_, SwitchError>(e.value)
         },
-        &grid,
+        grid,
         &ys,
         Tolerance::relative((0.1 * precision.pull_out).clamp(1e-12, 1e-3)),
     )?;
@@ -594,6 +595,59 @@ pub fn unload<S: SurfaceLaw>(
         curve,
         well,
     })
+}
+
+/// Samples of the pull-out scan evaluated before the first check of the tension bound:
+/// the geometric start of the grid, where the contact is still compressive.
+const SCAN_FIRST_BATCH: usize = 24;
+/// Samples per batch after it (each batch in parallel).
+const SCAN_BATCH: usize = 8;
+/// The scan stops once the surface's tension bound beyond the next sample is below this
+/// fraction of the most tensile sample: the scan's pressures err by about 1e-3 of the
+/// forces summed, far less than the headroom.
+const SCAN_STOP: f64 = 0.5;
+
+/// The scan pressures of the pull-out search on `grid`, outward from d_e in batches,
+/// ended early when the surface bounds the tension further out
+/// ([`SurfaceLaw::tension_bound`]) below [`SCAN_STOP`] of the most tensile sample so far
+/// and the last sample is not a local minimum (so the truncated grid offers the
+/// refinement the same candidates as the whole grid, save those the bound rules out).
+/// Without a bound, every sample.
+fn scan<S: SurfaceLaw>(
+    surface: &S,
+    history: &S::History,
+    path: Path,
+    grid: &[f64],
+) -> Result<Vec<f64>, SwitchError> {
+    let pressures = |ds: &[f64]| par::map(ds, |&d| surface.pressure_scan(d, history, path));
+    // a law without a bound (asked at the far end, where it is cheapest) gets one batch
+    let Some(&last) = grid.last() else {
+        return Ok(Vec::new());
+    };
+    if surface.tension_bound(last, history, path)?.is_none() {
+        return Ok(pressures(grid)?);
+    }
+    let mut ys: Vec<f64> = Vec::with_capacity(grid.len());
+    while ys.len() < grid.len() {
+        let start = ys.len();
+        let batch = if start == 0 {
+            SCAN_FIRST_BATCH
+        } else {
+            SCAN_BATCH
+        };
+        let end = (start + batch).min(grid.len());
+        ys.extend(pressures(&grid[start..end])?);
+        let n = ys.len();
+        let least = ys.iter().copied().fold(f64::INFINITY, f64::min);
+        if n < grid.len() && least < 0.0 && ys[n - 1] >= ys[n - 2] {
+            if let Some(b) = surface.tension_bound(grid[n], history, path)? {
+                if b < SCAN_STOP * -least {
+                    break;
+                }
+            }
+        }
+    }
+    Ok(ys)
 }
 
 /// Where the closed switch rests after an impact under a hold pressure.
@@ -907,9 +961,13 @@ pub fn run_cycles<S: SurfaceLaw>(
                     )?,
                 };
                 let new_hist = surface.load(&hist, end.d_e);
-                // a next cycle that starts from a changed history needs its own eq 17; one
-                // that starts from the same history repeats this cycle
-                let ahead = k < options.cycles && new_hist != hist;
+                // a next cycle that starts from a changed history needs its own eq 17 (one
+                // that starts from the same history repeats this cycle); found ahead only
+                // when the run is sure to get there: a run that stops at accommodation may
+                // stop after this cycle unless d_e alone already rules accommodation out
+                let sure = !options.until_accommodated
+                    || prev.is_none_or(|p| (end.d_e - p.end.d_e).abs() > tol * scale);
+                let ahead = k < options.cycles && new_hist != hist && sure;
                 let (unloading, ahead_end) = contact_core::par::join(
                     || {
                         unload(
