@@ -343,3 +343,76 @@ fn the_declared_yield_crossing_is_where_the_approach_edge_meets_the_yield_height
         "{below} {at} {above}"
     );
 }
+
+/// The tension bound B(d0) lies below no retraction pressure from d0 outward: p(d) >=
+/// -B(d0) for every d >= d0 (sampled densely to the reach), for impacts from above the
+/// mean plane to 2 sigma below it, both readings of eq 1 and a DMT surface; it shrinks as
+/// d0 grows, is zero beyond the reach and absent on approach. Where the well's floor lies
+/// inside the range it is within a factor 20 of the deepest tension (a useful bound, not
+/// only a true one).
+#[test]
+fn no_retraction_pressure_beyond_d0_pulls_harder_than_the_tension_bound() {
+    let pair = ru_pair();
+    let surfaces: Vec<Box<dyn Fn(f64, f64) -> (f64, f64, f64)>> = vec![
+        Box::new(|from, d0| bound_and_least(&ru_surface(q(1e-10)), from, d0)),
+        Box::new(|from, d0| {
+            let ek = EtsionKadin::new(&ru_pair(), YieldModulus::Composite).unwrap();
+            let mk = MaugisKim::new(dugdale(&ru_pair())).unwrap();
+            let gw = GreenwoodWilliamson::new(ElastoPlasticAsperity::new(ek, mk), ROUGH, q(1e-10))
+                .unwrap();
+            bound_and_least(&gw, from, d0)
+        }),
+        Box::new(move |from, d0| {
+            let ek = EtsionKadin::new(&pair, YieldModulus::AsPrinted).unwrap();
+            let dmt = Dmt::new(dugdale(&pair)).unwrap();
+            let gw = GreenwoodWilliamson::new(ElastoPlasticAsperity::new(ek, dmt), ROUGH, q(1e-10))
+                .unwrap();
+            bound_and_least(&gw, from, d0)
+        }),
+    ];
+    for (k, run) in surfaces.iter().enumerate() {
+        for from in [0.5 * SIGMA, -2.0 * SIGMA] {
+            let mut last = f64::INFINITY;
+            let mut deepest = 0.0_f64;
+            let mut tight = f64::INFINITY;
+            for step in [0.0, 0.3, 0.7, 1.2, 2.0, 3.0] {
+                let d0 = from + step * SIGMA;
+                let (bound, least, _) = run(from, d0);
+                assert!(bound >= 0.0, "surface {k}");
+                assert!(-least <= bound, "surface {k} from {from:e} d0 {d0:e}: {least} vs {bound}");
+                assert!(bound <= last, "surface {k}: the bound grew with d0");
+                last = bound;
+                deepest = deepest.max(-least);
+                if -least > 0.0 {
+                    tight = tight.min(bound / -least);
+                }
+            }
+            assert!(deepest > 0.0, "surface {k}: no tension");
+            assert!(tight < 20.0, "surface {k}: loosest {tight}");
+        }
+    }
+    let gw = ru_surface(q(1e-10));
+    let hist = gw.load(&gw.virgin(), 0.5 * SIGMA);
+    let path = Path::Retract { from: 0.5 * SIGMA };
+    let reach = gw.reach(&hist, path).unwrap();
+    assert_eq!(gw.tension_bound(reach + SIGMA, &hist, path).unwrap(), Some(0.0));
+    assert_eq!(gw.tension_bound(SIGMA, &hist, Path::Approach).unwrap(), None);
+}
+
+/// The bound at d0 after an impact to `from`, the least pressure sampled from d0 to the
+/// reach (400 points), and the reach.
+fn bound_and_least<M: AsperityModel + Sync>(
+    gw: &GreenwoodWilliamson<M>,
+    from: f64,
+    d0: f64,
+) -> (f64, f64, f64) {
+    let hist = gw.load(&gw.virgin(), from);
+    let path = Path::Retract { from };
+    let bound = gw.tension_bound(d0, &hist, path).unwrap().unwrap();
+    let reach = gw.reach(&hist, path).unwrap();
+    let least = (0..=400)
+        .map(|i| d0 + (reach - d0) * i as f64 / 400.0)
+        .map(|d| gw.pressure(d, &hist, path).unwrap())
+        .fold(0.0, f64::min);
+    (bound, least, reach)
+}

@@ -403,3 +403,206 @@ fn eq_17_is_not_re_solved_for_an_error_only_the_pressures_can_reduce() {
     );
     assert!((end.d_e - reference.d_e).abs() <= fast.d_e * SIGMA);
 }
+
+/// A surface that forwards another, counts the scan pressures it is asked for, and
+/// forwards the tension bound or hides it.
+struct Scans<'a, S> {
+    inner: &'a S,
+    bound: bool,
+    scans: std::sync::atomic::AtomicUsize,
+}
+
+impl<S: SurfaceLaw> SurfaceLaw for Scans<'_, S> {
+    type History = S::History;
+    fn virgin(&self) -> S::History {
+        self.inner.virgin()
+    }
+    fn pressure_estimate(
+        &self,
+        d: f64,
+        history: &S::History,
+        path: Path,
+    ) -> Result<contact_core::Estimate, contact_core::LawError> {
+        self.inner.pressure_estimate(d, history, path)
+    }
+    fn pressure_scan(
+        &self,
+        d: f64,
+        history: &S::History,
+        path: Path,
+    ) -> Result<f64, contact_core::LawError> {
+        self.scans
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        self.inner.pressure_scan(d, history, path)
+    }
+    fn load(&self, history: &S::History, d: f64) -> S::History {
+        self.inner.load(history, d)
+    }
+    fn reach(&self, history: &S::History, path: Path) -> Result<f64, contact_core::LawError> {
+        self.inner.reach(history, path)
+    }
+    fn length_scales(
+        &self,
+        history: &S::History,
+    ) -> Result<contact_core::LengthScales, contact_core::LawError> {
+        self.inner.length_scales(history)
+    }
+    fn kinks(&self, history: &S::History) -> Vec<f64> {
+        self.inner.kinks(history)
+    }
+    fn tension_bound(
+        &self,
+        d: f64,
+        history: &S::History,
+        path: Path,
+    ) -> Result<Option<f64>, contact_core::LawError> {
+        if self.bound {
+            self.inner.tension_bound(d, history, path)
+        } else {
+            Ok(None)
+        }
+    }
+}
+
+/// The pull-out scan ends where the surface's tension bound rules out anything further
+/// out, with fewer scan pressures and the same pull-out to the bit as the whole scan, for
+/// adhesive surfaces whose well lies at different depths (both readings of eq 1, a
+/// shallow and a deep impact, Maugis-Kim and JKR).
+#[test]
+fn the_pull_out_scan_stops_early_only_where_the_bound_allows() {
+    let jkr = Jkr::new(JkrParams {
+        k: pair().k(),
+        work_of_adhesion: paper::WORK_OF_ADHESION,
+    })
+    .unwrap();
+    let surfaces: Vec<(&str, Box<dyn Fn(f64) -> (f64, f64, f64, usize, usize)>)> = vec![
+        (
+            "maugis_kim as printed",
+            Box::new(|d| compare(&plastic(YieldModulus::AsPrinted), d)),
+        ),
+        (
+            "maugis_kim composite",
+            Box::new(|d| compare(&plastic(YieldModulus::Composite), d)),
+        ),
+        (
+            "jkr",
+            Box::new(move |d| {
+                compare(
+                    &surface(
+                        EtsionKadin::new(&pair(), YieldModulus::AsPrinted).unwrap(),
+                        jkr,
+                        SIGMA,
+                    ),
+                    d,
+                )
+            }),
+        ),
+    ];
+    let mut stopped = 0;
+    for (name, run) in &surfaces {
+        for d_e in [0.3 * SIGMA, -1.0 * SIGMA] {
+            let (with, without, at, n_with, n_without) = run(d_e);
+            assert_eq!(with, without, "{name} at {d_e:e}: the pull-out changed");
+            assert!(with > 0.0 && at > d_e, "{name}: no pull-out");
+            assert!(n_with <= n_without, "{name}: {n_with} > {n_without}");
+            if n_with < n_without {
+                stopped += 1;
+            }
+        }
+    }
+    // the bound ends most scans early (the point of it)
+    assert!(stopped >= 4, "only {stopped} of 6 scans ended early");
+}
+
+/// Unloading from `d_e` with and without the tension bound: the two pull-outs, the
+/// separation of the first and the scan pressures each asked for.
+fn compare<S: SurfaceLaw<History = GwHistory>>(gw: &S, d_e: f64) -> (f64, f64, f64, usize, usize) {
+    let hist = gw.load(&gw.virgin(), d_e);
+    let run = |bound| {
+        let s = Scans {
+            inner: gw,
+            bound,
+            scans: Default::default(),
+        };
+        let u = unload(&s, &hist, d_e, 0, Precision::default()).unwrap();
+        (u, s.scans.into_inner())
+    };
+    let ((with, n_with), (without, n_without)) = (run(true), run(false));
+    (
+        with.pull_out_pressure,
+        without.pull_out_pressure,
+        with.pull_out_separation,
+        n_with,
+        n_without,
+    )
+}
+
+/// A made-up retraction curve with two adhesive wells, the deeper one further out:
+/// p(d) = P (2 e^(-d/l) - g(d; 2 nm) - 2 g(d; 6 nm)), g a Gaussian bump 0.4 nm wide, and
+/// its exact tension bound (the largest tension from d outward, sampled densely) when
+/// `bound`.
+struct TwoWells {
+    bound: bool,
+    scale: f64,
+}
+
+impl TwoWells {
+    const P: f64 = 1e6;
+    fn p(d: f64) -> f64 {
+        let g = |c: f64| (-((d - c) / 0.4e-9).powi(2)).exp();
+        Self::P * (2.0 * (-d / 0.3e-9).exp() - g(2e-9) - 2.0 * g(6e-9))
+    }
+}
+
+impl SurfaceLaw for TwoWells {
+    type History = ();
+    fn virgin(&self) {}
+    fn pressure_estimate(
+        &self,
+        d: f64,
+        _: &(),
+        _: Path,
+    ) -> Result<contact_core::Estimate, contact_core::LawError> {
+        Ok(contact_core::Estimate {
+            value: Self::p(d),
+            error: 0.0,
+        })
+    }
+    fn load(&self, _: &(), _: f64) {}
+    fn reach(&self, _: &(), _: Path) -> Result<f64, contact_core::LawError> {
+        Ok(10e-9)
+    }
+    fn length_scales(&self, _: &()) -> Result<contact_core::LengthScales, contact_core::LawError> {
+        Ok(contact_core::LengthScales {
+            finest: 0.1e-9,
+            roughness: 1e-9,
+            deepest: -10e-9,
+        })
+    }
+    fn tension_bound(&self, d: f64, _: &(), _: Path) -> Result<Option<f64>, contact_core::LawError> {
+        Ok(self.bound.then(|| {
+            self.scale
+                * (0..=4000)
+                    .map(|i| -Self::p(d + (10e-9 - d) * i as f64 / 4000.0))
+                    .fold(0.0, f64::max)
+        }))
+    }
+}
+
+/// Past a first well the scan goes on while the bound says something further out may
+/// pull harder, and finds the deeper well; with a bound that is wrong (a hundredth of the
+/// true one) it stops after the first well, which shows the stop is what the bound
+/// decides.
+#[test]
+fn the_pull_out_scan_goes_on_while_the_bound_allows_a_deeper_well() {
+    let unload_with = |bound, scale| {
+        let s = TwoWells { bound, scale };
+        unload(&s, &(), 0.0, 0, Precision::default()).unwrap()
+    };
+    let (bounded, plain) = (unload_with(true, 1.0), unload_with(false, 1.0));
+    assert_eq!(bounded.pull_out_pressure, plain.pull_out_pressure);
+    assert!((bounded.pull_out_separation - 6e-9).abs() < 0.05e-9);
+    assert!(bounded.pull_out_pressure > 1.9 * TwoWells::P);
+    let wrong = unload_with(true, 1e-2);
+    assert!((wrong.pull_out_separation - 2e-9).abs() < 0.05e-9, "{wrong:?}");
+}
