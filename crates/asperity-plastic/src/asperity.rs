@@ -222,7 +222,8 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
     /// ([`PlasticityLaw::radius_bound`]); the bounded reload only caps compression.
     fn max_tension(&self, history: AsperityHistory) -> Option<f64> {
         let state = self.plasticity.state(history.delta_max);
-        self.adhesion.max_tension(self.plasticity.radius_bound(&state)?)
+        self.adhesion
+            .max_tension(self.plasticity.radius_bound(&state)?)
     }
 
     fn radius(&self) -> f64 {

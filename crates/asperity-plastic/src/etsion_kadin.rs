@@ -289,7 +289,11 @@ impl PlasticityLaw for EtsionKadin {
     /// R_eff moves monotonically from R_res (x = 0) to its value at x = 1 (eq 12's
     /// shape f is monotone from 0 to 1), so the larger end bounds it.
     fn radius_bound(&self, state: &PlasticState) -> Option<f64> {
-        Some(state.r_res.max(self.effective_radius(state, state.delta_max)))
+        Some(
+            state
+                .r_res
+                .max(self.effective_radius(state, state.delta_max)),
+        )
     }
 
     /// The finite-element range of eqs 4-5 (Etsion, Kligerman & Kadin 2005): 1 to 110.

@@ -455,7 +455,11 @@ impl PlasticityLaw for KogutEtsion {
     /// R_eff moves monotonically between r_res (x = 0) and R_L (x = 1) on both of its
     /// forms, so the larger end bounds it.
     fn radius_bound(&self, state: &PlasticState) -> Option<f64> {
-        Some(state.r_res.max(self.effective_radius(state, state.delta_max)))
+        Some(
+            state
+                .r_res
+                .max(self.effective_radius(state, state.delta_max)),
+        )
     }
 
     /// 6 delta_c and 110 delta_c, where the loading force jumps, and the delta_max where

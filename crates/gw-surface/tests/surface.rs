@@ -353,7 +353,7 @@ fn the_declared_yield_crossing_is_where_the_approach_edge_meets_the_yield_height
 #[test]
 fn no_retraction_pressure_beyond_d0_pulls_harder_than_the_tension_bound() {
     let pair = ru_pair();
-    let surfaces: Vec<Box<dyn Fn(f64, f64) -> (f64, f64, f64)>> = vec![
+    let surfaces: Vec<Probe> = vec![
         Box::new(|from, d0| bound_and_least(&ru_surface(q(1e-10)), from, d0)),
         Box::new(|from, d0| {
             let ek = EtsionKadin::new(&ru_pair(), YieldModulus::Composite).unwrap();
@@ -377,9 +377,12 @@ fn no_retraction_pressure_beyond_d0_pulls_harder_than_the_tension_bound() {
             let mut tight = f64::INFINITY;
             for step in [0.0, 0.3, 0.7, 1.2, 2.0, 3.0] {
                 let d0 = from + step * SIGMA;
-                let (bound, least, _) = run(from, d0);
+                let (bound, least) = run(from, d0);
                 assert!(bound >= 0.0, "surface {k}");
-                assert!(-least <= bound, "surface {k} from {from:e} d0 {d0:e}: {least} vs {bound}");
+                assert!(
+                    -least <= bound,
+                    "surface {k} from {from:e} d0 {d0:e}: {least} vs {bound}"
+                );
                 assert!(bound <= last, "surface {k}: the bound grew with d0");
                 last = bound;
                 deepest = deepest.max(-least);
@@ -395,17 +398,26 @@ fn no_retraction_pressure_beyond_d0_pulls_harder_than_the_tension_bound() {
     let hist = gw.load(&gw.virgin(), 0.5 * SIGMA);
     let path = Path::Retract { from: 0.5 * SIGMA };
     let reach = gw.reach(&hist, path).unwrap();
-    assert_eq!(gw.tension_bound(reach + SIGMA, &hist, path).unwrap(), Some(0.0));
-    assert_eq!(gw.tension_bound(SIGMA, &hist, Path::Approach).unwrap(), None);
+    assert_eq!(
+        gw.tension_bound(reach + SIGMA, &hist, path).unwrap(),
+        Some(0.0)
+    );
+    assert_eq!(
+        gw.tension_bound(SIGMA, &hist, Path::Approach).unwrap(),
+        None
+    );
 }
 
-/// The bound at d0 after an impact to `from`, the least pressure sampled from d0 to the
-/// reach (400 points), and the reach.
+/// A surface's (bound, least pressure) at d0 after an impact to `from`.
+type Probe = Box<dyn Fn(f64, f64) -> (f64, f64)>;
+
+/// The bound at d0 after an impact to `from` and the least pressure sampled from d0 to the
+/// reach (400 points).
 fn bound_and_least<M: AsperityModel + Sync>(
     gw: &GreenwoodWilliamson<M>,
     from: f64,
     d0: f64,
-) -> (f64, f64, f64) {
+) -> (f64, f64) {
     let hist = gw.load(&gw.virgin(), from);
     let path = Path::Retract { from };
     let bound = gw.tension_bound(d0, &hist, path).unwrap().unwrap();
@@ -414,5 +426,5 @@ fn bound_and_least<M: AsperityModel + Sync>(
         .map(|i| d0 + (reach - d0) * i as f64 / 400.0)
         .map(|d| gw.pressure(d, &hist, path).unwrap())
         .fold(0.0, f64::min);
-    (bound, least, reach)
+    (bound, least)
 }

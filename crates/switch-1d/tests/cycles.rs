@@ -475,7 +475,7 @@ fn the_pull_out_scan_stops_early_only_where_the_bound_allows() {
         work_of_adhesion: paper::WORK_OF_ADHESION,
     })
     .unwrap();
-    let surfaces: Vec<(&str, Box<dyn Fn(f64) -> (f64, f64, f64, usize, usize)>)> = vec![
+    let surfaces: Vec<(&str, Run)> = vec![
         (
             "maugis_kim as printed",
             Box::new(|d| compare(&plastic(YieldModulus::AsPrinted), d)),
@@ -500,8 +500,14 @@ fn the_pull_out_scan_stops_early_only_where_the_bound_allows() {
     ];
     let mut stopped = 0;
     for (name, run) in &surfaces {
-        for d_e in [0.3 * SIGMA, -1.0 * SIGMA] {
-            let (with, without, at, n_with, n_without) = run(d_e);
+        for d_e in [0.3 * SIGMA, -SIGMA] {
+            let Compared {
+                with,
+                without,
+                at,
+                n_with,
+                n_without,
+            } = run(d_e);
             assert_eq!(with, without, "{name} at {d_e:e}: the pull-out changed");
             assert!(with > 0.0 && at > d_e, "{name}: no pull-out");
             assert!(n_with <= n_without, "{name}: {n_with} > {n_without}");
@@ -514,9 +520,21 @@ fn the_pull_out_scan_stops_early_only_where_the_bound_allows() {
     assert!(stopped >= 4, "only {stopped} of 6 scans ended early");
 }
 
-/// Unloading from `d_e` with and without the tension bound: the two pull-outs, the
-/// separation of the first and the scan pressures each asked for.
-fn compare<S: SurfaceLaw<History = GwHistory>>(gw: &S, d_e: f64) -> (f64, f64, f64, usize, usize) {
+/// Unloading with and without the tension bound: the two pull-outs, the separation of the
+/// first and the scan pressures each asked for.
+struct Compared {
+    with: f64,
+    without: f64,
+    at: f64,
+    n_with: usize,
+    n_without: usize,
+}
+
+/// One surface's comparison at an impact depth.
+type Run = Box<dyn Fn(f64) -> Compared>;
+
+/// [`Compared`] for an unloading from `d_e` after loading the virgin surface to it.
+fn compare<S: SurfaceLaw<History = GwHistory>>(gw: &S, d_e: f64) -> Compared {
     let hist = gw.load(&gw.virgin(), d_e);
     let run = |bound| {
         let s = Scans {
@@ -528,13 +546,13 @@ fn compare<S: SurfaceLaw<History = GwHistory>>(gw: &S, d_e: f64) -> (f64, f64, f
         (u, s.scans.into_inner())
     };
     let ((with, n_with), (without, n_without)) = (run(true), run(false));
-    (
-        with.pull_out_pressure,
-        without.pull_out_pressure,
-        with.pull_out_separation,
+    Compared {
+        with: with.pull_out_pressure,
+        without: without.pull_out_pressure,
+        at: with.pull_out_separation,
         n_with,
         n_without,
-    )
+    }
 }
 
 /// A made-up retraction curve with two adhesive wells, the deeper one further out:
@@ -579,7 +597,12 @@ impl SurfaceLaw for TwoWells {
             deepest: -10e-9,
         })
     }
-    fn tension_bound(&self, d: f64, _: &(), _: Path) -> Result<Option<f64>, contact_core::LawError> {
+    fn tension_bound(
+        &self,
+        d: f64,
+        _: &(),
+        _: Path,
+    ) -> Result<Option<f64>, contact_core::LawError> {
         Ok(self.bound.then(|| {
             self.scale
                 * (0..=4000)
@@ -604,5 +627,8 @@ fn the_pull_out_scan_goes_on_while_the_bound_allows_a_deeper_well() {
     assert!((bounded.pull_out_separation - 6e-9).abs() < 0.05e-9);
     assert!(bounded.pull_out_pressure > 1.9 * TwoWells::P);
     let wrong = unload_with(true, 1e-2);
-    assert!((wrong.pull_out_separation - 2e-9).abs() < 0.05e-9, "{wrong:?}");
+    assert!(
+        (wrong.pull_out_separation - 2e-9).abs() < 0.05e-9,
+        "{wrong:?}"
+    );
 }
