@@ -273,16 +273,20 @@ fn an_energy_the_surface_cannot_absorb_is_an_error() {
     assert!(run_cycles(&gw, gw.virgin(), bad, quick(1), &mut |_| {}).is_err());
 }
 
-/// A surface that wraps another, logs the approach separations it is asked for, and can
-/// report every approach pressure's error `inflate` times larger than its quadrature's (with
-/// a floor of 1e-12 of the pressure) and its roughness `sigma_scale` times its own (which
-/// scales the d_e target of eq 17, a fraction of the roughness, without changing the
-/// pressures).
+/// A surface that wraps another, logs the approach separations it is asked for, counts
+/// the scan pressures, can hide its tension bound, and can report every approach
+/// pressure's error `inflate` times larger than its quadrature's (with a floor of 1e-12 of
+/// the pressure) and its roughness `sigma_scale` times its own (which scales the d_e target
+/// of eq 17, a fraction of the roughness, without changing the pressures).
 struct Recorder<'a, S> {
     inner: &'a S,
     inflate: f64,
     sigma_scale: f64,
     asked: std::sync::Mutex<Vec<u64>>,
+    /// Forward the inner surface's tension bound (else none).
+    bound: bool,
+    /// Scan pressures asked for.
+    scans: std::sync::atomic::AtomicUsize,
 }
 
 impl<'a, S: SurfaceLaw> Recorder<'a, S> {
@@ -292,6 +296,16 @@ impl<'a, S: SurfaceLaw> Recorder<'a, S> {
             inflate,
             sigma_scale,
             asked: std::sync::Mutex::new(Vec::new()),
+            bound: false,
+            scans: Default::default(),
+        }
+    }
+
+    /// The plain surface, counting scan pressures, with its tension bound or without.
+    fn scans(inner: &'a S, bound: bool) -> Self {
+        Self {
+            bound,
+            ..Self::new(inner, 1.0, 1.0)
         }
     }
 }
@@ -335,6 +349,28 @@ impl<S: SurfaceLaw> SurfaceLaw for Recorder<'_, S> {
     }
     fn kinks(&self, history: &S::History) -> Vec<f64> {
         self.inner.kinks(history)
+    }
+    fn pressure_scan(
+        &self,
+        d: f64,
+        history: &S::History,
+        path: Path,
+    ) -> Result<f64, contact_core::LawError> {
+        self.scans
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        self.inner.pressure_scan(d, history, path)
+    }
+    fn tension_bound(
+        &self,
+        d: f64,
+        history: &S::History,
+        path: Path,
+    ) -> Result<Option<f64>, contact_core::LawError> {
+        if self.bound {
+            self.inner.tension_bound(d, history, path)
+        } else {
+            Ok(None)
+        }
     }
 }
 
@@ -402,66 +438,6 @@ fn eq_17_is_not_re_solved_for_an_error_only_the_pressures_can_reduce() {
         "{n_pessimist} approach pressures against the plain surface's {n_plain}"
     );
     assert!((end.d_e - reference.d_e).abs() <= fast.d_e * SIGMA);
-}
-
-/// A surface that forwards another, counts the scan pressures it is asked for, and
-/// forwards the tension bound or hides it.
-struct Scans<'a, S> {
-    inner: &'a S,
-    bound: bool,
-    scans: std::sync::atomic::AtomicUsize,
-}
-
-impl<S: SurfaceLaw> SurfaceLaw for Scans<'_, S> {
-    type History = S::History;
-    fn virgin(&self) -> S::History {
-        self.inner.virgin()
-    }
-    fn pressure_estimate(
-        &self,
-        d: f64,
-        history: &S::History,
-        path: Path,
-    ) -> Result<contact_core::Estimate, contact_core::LawError> {
-        self.inner.pressure_estimate(d, history, path)
-    }
-    fn pressure_scan(
-        &self,
-        d: f64,
-        history: &S::History,
-        path: Path,
-    ) -> Result<f64, contact_core::LawError> {
-        self.scans
-            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        self.inner.pressure_scan(d, history, path)
-    }
-    fn load(&self, history: &S::History, d: f64) -> S::History {
-        self.inner.load(history, d)
-    }
-    fn reach(&self, history: &S::History, path: Path) -> Result<f64, contact_core::LawError> {
-        self.inner.reach(history, path)
-    }
-    fn length_scales(
-        &self,
-        history: &S::History,
-    ) -> Result<contact_core::LengthScales, contact_core::LawError> {
-        self.inner.length_scales(history)
-    }
-    fn kinks(&self, history: &S::History) -> Vec<f64> {
-        self.inner.kinks(history)
-    }
-    fn tension_bound(
-        &self,
-        d: f64,
-        history: &S::History,
-        path: Path,
-    ) -> Result<Option<f64>, contact_core::LawError> {
-        if self.bound {
-            self.inner.tension_bound(d, history, path)
-        } else {
-            Ok(None)
-        }
-    }
 }
 
 /// The pull-out scan ends where the surface's tension bound rules out anything further
@@ -537,11 +513,7 @@ type Run = Box<dyn Fn(f64) -> Compared>;
 fn compare<S: SurfaceLaw<History = GwHistory>>(gw: &S, d_e: f64) -> Compared {
     let hist = gw.load(&gw.virgin(), d_e);
     let run = |bound| {
-        let s = Scans {
-            inner: gw,
-            bound,
-            scans: Default::default(),
-        };
+        let s = Recorder::scans(gw, bound);
         let u = unload(&s, &hist, d_e, 0, Precision::default()).unwrap();
         (u, s.scans.into_inner())
     };
