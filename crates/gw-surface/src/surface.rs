@@ -759,8 +759,9 @@ impl<M: AsperityModel + Sync> SurfaceLaw for GreenwoodWilliamson<M> {
             max_panels: 20_000,
             noise: NOISE,
         };
-        // a height whose asperity has no finite bound leaves the surface without one (the
-        // bound only saves work, so that is no error)
+        // a height whose asperity has no finite bound, or a bound the quadrature cannot
+        // integrate, leaves the surface without one (the bound only saves work, so neither
+        // is an error: the scan then runs to its end)
         let unknown = std::cell::Cell::new(false);
         let r = integrate(
             "tension bound",
@@ -777,10 +778,11 @@ impl<M: AsperityModel + Sync> SurfaceLaw for GreenwoodWilliamson<M> {
             false,
             &self.scan_rule,
             tol,
-        )?;
-        if unknown.get() {
-            return Ok(None);
-        }
+        );
+        let r = match r {
+            Ok(r) if !unknown.get() && r.value.is_finite() && r.error.is_finite() => r,
+            _ => return Ok(None),
+        };
         let n = self.density();
         Ok(Some(n * (r.value * (1.0 + 1e-3) + r.error)))
     }
