@@ -535,25 +535,36 @@ pub fn unload<S: SurfaceLaw>(
     let reach = surface.reach(history, path)?;
     let scales = surface.length_scales(history)?;
     let grid = pull_out_grid(d_e, reach, scales);
-    let ys = scan(surface, history, path, &grid)?;
-    let grid = &grid[..ys.len()];
+    let (mut ys, cut) = scan(surface, history, path, &grid)?;
     // the refinement's estimates by the bits of x: the minimum's error estimate is then
     // the one evaluated with its value, not a second evaluation
     let mut refined: Memo = Memo::default();
-    let m = refine_minima_par(
-        "pull-out pressure",
-        |x| {
-            let e = surface.pressure_estimate(x, history, path)?;
-            refined
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .insert(x.to_bits(), e);
-            Ok::<_, SwitchError>(e.value)
-        },
-        grid,
-        &ys,
-        Tolerance::relative((0.1 * precision.pull_out).clamp(1e-12, 1e-3)),
-    )?;
+    let refine = |ys: &[f64]| {
+        refine_minima_par(
+            "pull-out pressure",
+            |x| {
+                let e = surface.pressure_estimate(x, history, path)?;
+                refined
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .insert(x.to_bits(), e);
+                Ok::<_, SwitchError>(e.value)
+            },
+            &grid[..ys.len()],
+            ys,
+            Tolerance::relative((0.1 * precision.pull_out).clamp(1e-12, 1e-3)),
+        )
+    };
+    let mut m = refine(&ys)?;
+    // the scan stopped on its coarse samples; the refined pull-out must beat the bound too
+    // (it does unless the scan pressure erred by half the tension, where the forces
+    // summed nearly cancel): otherwise the rest of the grid is sampled after all
+    if cut.is_some_and(|b| !(m.value < 0.0 && b < -m.value)) {
+        ys.extend(par::map(&grid[ys.len()..], |&d| {
+            surface.pressure_scan(d, history, path)
+        })?);
+        m = refine(&ys)?;
+    }
     let (pull, at, error) = if m.value < 0.0 {
         let known = refined
             .get_mut()
@@ -611,21 +622,21 @@ const SCAN_STOP: f64 = 0.5;
 /// ended early when the surface bounds the tension further out
 /// ([`SurfaceLaw::tension_bound`]) below [`SCAN_STOP`] of the most tensile sample so far
 /// and the last sample is not a local minimum (so the truncated grid offers the
-/// refinement the same candidates as the whole grid, save those the bound rules out).
-/// Without a bound, every sample.
+/// refinement the same candidates as the whole grid, save those the bound rules out),
+/// with the bound where it stopped. Without a bound, every sample.
 fn scan<S: SurfaceLaw>(
     surface: &S,
     history: &S::History,
     path: Path,
     grid: &[f64],
-) -> Result<Vec<f64>, SwitchError> {
+) -> Result<(Vec<f64>, Option<f64>), SwitchError> {
     let pressures = |ds: &[f64]| par::map(ds, |&d| surface.pressure_scan(d, history, path));
     // a law without a bound (asked at the far end, where it is cheapest) gets one batch
     let Some(&last) = grid.last() else {
-        return Ok(Vec::new());
+        return Ok((Vec::new(), None));
     };
     if surface.tension_bound(last, history, path)?.is_none() {
-        return Ok(pressures(grid)?);
+        return Ok((pressures(grid)?, None));
     }
     let mut ys: Vec<f64> = Vec::with_capacity(grid.len());
     while ys.len() < grid.len() {
@@ -642,12 +653,12 @@ fn scan<S: SurfaceLaw>(
         if n < grid.len() && least < 0.0 && ys[n - 1] >= ys[n - 2] {
             if let Some(b) = surface.tension_bound(grid[n], history, path)? {
                 if b < SCAN_STOP * -least {
-                    break;
+                    return Ok((ys, Some(b)));
                 }
             }
         }
     }
-    Ok(ys)
+    Ok((ys, None))
 }
 
 /// Where the closed switch rests after an impact under a hold pressure.

@@ -534,13 +534,17 @@ fn compare<S: SurfaceLaw<History = GwHistory>>(gw: &S, d_e: f64) -> Compared {
 struct TwoWells {
     bound: bool,
     scale: f64,
+    /// How much deeper than it is the scan pressure sees the first well (in P).
+    lie: f64,
 }
 
 impl TwoWells {
     const P: f64 = 1e6;
+    fn g(d: f64, c: f64) -> f64 {
+        (-((d - c) / 0.4e-9).powi(2)).exp()
+    }
     fn p(d: f64) -> f64 {
-        let g = |c: f64| (-((d - c) / 0.4e-9).powi(2)).exp();
-        Self::P * (2.0 * (-d / 0.3e-9).exp() - g(2e-9) - 2.0 * g(6e-9))
+        Self::P * (2.0 * (-d / 0.3e-9).exp() - Self::g(d, 2e-9) - 2.0 * Self::g(d, 6e-9))
     }
 }
 
@@ -557,6 +561,9 @@ impl SurfaceLaw for TwoWells {
             value: Self::p(d),
             error: 0.0,
         })
+    }
+    fn pressure_scan(&self, d: f64, _: &(), _: Path) -> Result<f64, contact_core::LawError> {
+        Ok(Self::p(d) - self.lie * Self::P * Self::g(d, 2e-9))
     }
     fn load(&self, _: &(), _: f64) {}
     fn reach(&self, _: &(), _: Path) -> Result<f64, contact_core::LawError> {
@@ -591,7 +598,11 @@ impl SurfaceLaw for TwoWells {
 #[test]
 fn the_pull_out_scan_goes_on_while_the_bound_allows_a_deeper_well() {
     let unload_with = |bound, scale| {
-        let s = TwoWells { bound, scale };
+        let s = TwoWells {
+            bound,
+            scale,
+            lie: 0.0,
+        };
         unload(&s, &(), 0.0, 0, Precision::default()).unwrap()
     };
     let (bounded, plain) = (unload_with(true, 1.0), unload_with(false, 1.0));
@@ -603,4 +614,20 @@ fn the_pull_out_scan_goes_on_while_the_bound_allows_a_deeper_well() {
         (wrong.pull_out_separation - 2e-9).abs() < 0.05e-9,
         "{wrong:?}"
     );
+}
+
+/// A scan pressure that sees the first well ten times deeper than it is stops the scan
+/// after it; the refined pull-out (the true, shallow well) does not beat the bound there,
+/// so the rest of the grid is sampled and the deeper well further out is found all the
+/// same.
+#[test]
+fn a_scan_misled_into_stopping_early_is_resumed_when_the_refined_pull_out_falls_short() {
+    let s = TwoWells {
+        bound: true,
+        scale: 1.0,
+        lie: 10.0,
+    };
+    let u = unload(&s, &(), 0.0, 0, Precision::default()).unwrap();
+    assert!((u.pull_out_separation - 6e-9).abs() < 0.05e-9, "{u:?}");
+    assert!(u.pull_out_pressure > 1.9 * TwoWells::P);
 }
