@@ -34,6 +34,6 @@ mod traits;
 pub use error::{finite, positive, Categorized, Category, CoreError, LawError};
 pub use material::{paper, Material, MaterialProps, Pair};
 pub use traits::{
-    AdhesionLaw, AsperityHistory, AsperityModel, Estimate, Jumps, LengthScales, Path, PlasticState,
-    PlasticityLaw, SurfaceLaw, YieldingBody,
+    AboveDeepest, AdhesionLaw, AsperityHistory, AsperityModel, Estimate, Jumps, LengthScales, Path,
+    PlasticState, PlasticityLaw, SurfaceLaw, VirginWork, YieldingBody,
 };

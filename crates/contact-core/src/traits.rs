@@ -407,6 +407,30 @@ pub trait AsperityModel {
     }
 }
 
+/// The approach above the deepest separation a history reached
+/// ([`SurfaceLaw::above_deepest`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct AboveDeepest {
+    /// The deepest separation D (m).
+    pub deepest: f64,
+    /// The approach work above it, integral from D to the reach of p_L (J/m^2).
+    pub work: Estimate,
+    /// An upper bound on the approach pressure p_L(d) at every d > D (Pa).
+    pub pressure_bound: f64,
+}
+
+/// The approach work over a stretch of virgin loading ([`SurfaceLaw::virgin_work`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct VirginWork {
+    /// The integral of p_L over the stretch (J/m^2).
+    pub work: Estimate,
+    /// p_L at its lower end from the surface's tables (Pa): an approximation within the
+    /// tables' tolerance, for bracketing, not an evaluation.
+    pub pressure: f64,
+}
+
 /// A value with its error estimate (same units).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
@@ -488,6 +512,43 @@ pub trait SurfaceLaw: Sync {
     fn kinks(&self, history: &Self::History) -> Vec<f64> {
         let _ = history;
         Vec::new()
+    }
+
+    /// The approach above the deepest separation D the `history` reached
+    /// ([`AboveDeepest`]): the work of the approach pressure from the first touch down to
+    /// D, integral from D to the reach of p_L(d) dd, with its error estimate, to within
+    /// max(`abs`, `rel_of_abs` x the integral of |p_L|), and a bound on p_L above D. A
+    /// surface that can integrate it the other way round (over its asperities, each
+    /// reloading up to its own largest interference) saves eq 17 the approach above D,
+    /// which every cycle after the first crosses. None (the default) when it cannot, or
+    /// when the history has no single deepest separation.
+    fn above_deepest(
+        &self,
+        history: &Self::History,
+        abs: f64,
+        rel_of_abs: f64,
+    ) -> Result<Option<AboveDeepest>, LawError> {
+        let _ = (history, abs, rel_of_abs);
+        Ok(None)
+    }
+
+    /// The approach work from `lo` to `hi` (m, lo < hi), integral of p_L, where the approach
+    /// is the virgin loading (at or below the deepest separation the `history` reached, or
+    /// anywhere on a never-pressed surface), to within max(`abs`, `rel_of_abs` x the
+    /// integral of |p_L|), with a tabulated p_L(lo) ([`VirginWork`]). A surface that
+    /// tabulates its asperities' virgin loading answers without a pressure evaluation,
+    /// which is what eq 17's search below the deepest point asks for. None (the default)
+    /// when it cannot, or when `hi` lies above the deepest separation.
+    fn virgin_work(
+        &self,
+        history: &Self::History,
+        lo: f64,
+        hi: f64,
+        abs: f64,
+        rel_of_abs: f64,
+    ) -> Result<Option<VirginWork>, LawError> {
+        let _ = (history, lo, hi, abs, rel_of_abs);
+        Ok(None)
     }
 
     /// A bound B (Pa, >= 0) on the tension at every separation from `d` (m) outward on

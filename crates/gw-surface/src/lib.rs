@@ -38,8 +38,11 @@ struct ReadmeDoctests;
 
 mod error;
 mod history;
+mod reload;
 mod surface;
+mod virgin;
 
 pub use error::GwError;
 pub use history::{GwHistory, HeightTable};
+pub use reload::ReloadTables;
 pub use surface::{ContactSpots, GreenwoodWilliamson, Quadrature, Roughness, TAIL_SIGMAS};

@@ -1,13 +1,15 @@
 use crate::error::GwError;
 use crate::history::GwHistory;
+use crate::reload::ReloadTables;
 use contact_core::numeric::{
     brent_from, integrate, AdaptiveRule, Integral, QuadTolerance, Sample, Tolerance, NOISE,
 };
 use contact_core::{
-    positive, AsperityHistory, AsperityModel, CoreError, Estimate, LawError, LengthScales, Path,
-    SurfaceLaw,
+    positive, AboveDeepest, AsperityHistory, AsperityModel, CoreError, Estimate, LawError,
+    LengthScales, Path, SurfaceLaw, VirginWork,
 };
 use statrs::distribution::{Continuous, ContinuousCDF, Normal};
+use std::sync::Arc;
 
 /// Heights are integrated over |h| <= TAIL_SIGMAS sigma_s. The Gaussian mass left out,
 /// 2 Q(9) = 2.3e-19, times the force of the highest asperity, bounds the truncation
@@ -105,7 +107,14 @@ pub struct GreenwoodWilliamson<M> {
     rule: AdaptiveRule,
     scan_rule: AdaptiveRule,
     normal: Normal,
+    /// The reload work of one asperity, tabulated on first use by eq 17's search.
+    reload: Arc<ReloadTables>,
 }
+
+/// The finest tolerance the asperity tables are built to: asked for less (the reference
+/// mode), a surface goes without them, and eq 17 integrates evaluated pressures (so the
+/// reference the modes are measured against does not share the tables' numerics).
+const FINEST_TABLE: f64 = 1e-13;
 
 /// Relative tolerance of [`SurfaceLaw::pressure_scan`].
 const SCAN_TOLERANCE: f64 = 1e-3;
@@ -140,6 +149,7 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
             rule: AdaptiveRule::new(q.nodes)?,
             scan_rule: AdaptiveRule::new(4)?,
             normal: Normal::new(0.0, 1.0).expect("standard normal"),
+            reload: Arc::default(),
         })
     }
 
@@ -158,6 +168,18 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
     /// The roughness.
     pub fn roughness(&self) -> Roughness {
         self.roughness
+    }
+    /// The same surface drawing on `tables` for the reload work and virgin loading of its
+    /// asperities (eq 17): a surface of the same asperity model with another roughness or
+    /// quadrature may have built them already (the tables use their own fixed rule). Share
+    /// them only between surfaces of equal asperity models.
+    pub fn with_reload_tables(mut self, tables: Arc<ReloadTables>) -> Self {
+        self.reload = tables;
+        self
+    }
+    /// The reload-work tables this surface draws on (see [`Self::with_reload_tables`]).
+    pub fn reload_tables(&self) -> Arc<ReloadTables> {
+        self.reload.clone()
     }
     /// The quadrature in use.
     pub fn quadrature(&self) -> Quadrature {
@@ -599,6 +621,181 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
     }
 }
 
+impl<M: AsperityModel + Sync> GreenwoodWilliamson<M> {
+    /// The approach work from `lo` to `hi` where every asperity in contact loads on its
+    /// virgin curve (J/m^2): N integral phi(h) (V(h - lo) - V(h - hi)) dh, V(x) the work of
+    /// a never-pressed asperity loaded to x, tabulated once per surface and tolerance
+    /// decade (`VirginTable`, to a tenth of `rel_of_abs`), with the quadrature's estimate
+    /// and the table's (N integral phi (e_V(h - lo) + e_V(h - hi)) dh); and the tabulated
+    /// pressure at `lo`, N integral phi(h) F_v(h - lo) dh.
+    fn virgin_loading(
+        &self,
+        lo: f64,
+        hi: f64,
+        abs: f64,
+        rel_of_abs: f64,
+    ) -> Result<VirginWork, GwError> {
+        let sigma = self.sigma_s();
+        let n = self.density();
+        let top = TAIL_SIGMAS * sigma;
+        let table = self
+            .reload
+            .virgin(&self.asperity, 0.1 * rel_of_abs, top - lo)?;
+        let j0 = table.x_min();
+        let u_lo = (lo + j0) / sigma;
+        let u_top = TAIL_SIGMAS;
+        if !(u_lo < u_top) {
+            return Ok(VirginWork {
+                work: Estimate::default(),
+                pressure: 0.0,
+            });
+        }
+        let mut us = vec![u_lo, u_top];
+        for &e in table.hard_breaks() {
+            for base in [lo, hi] {
+                let u = (base + e) / sigma;
+                if u > u_lo && u < u_top {
+                    us.push(u);
+                }
+            }
+        }
+        us.sort_by(f64::total_cmp);
+        us.dedup();
+        let tol = QuadTolerance {
+            rel: 0.0,
+            rel_of_abs: 0.5 * rel_of_abs,
+            abs: 0.5 * abs / n,
+            max_width: START_PANEL_SIGMAS,
+            max_panels: 20_000,
+            noise: NOISE,
+        };
+        let w = integrate(
+            "virgin approach work",
+            |u: f64| {
+                let h = sigma * u;
+                Ok::<_, GwError>((table.work(h - lo).0 - table.work(h - hi).0) * self.normal.pdf(u))
+            },
+            &us,
+            true,
+            &self.rule,
+            tol,
+        )?;
+        // the table's error, over the mass of heights in contact
+        let cdf = |h: f64| self.normal.cdf((h / sigma).clamp(u_lo, u_top));
+        let table_error = table.error_mass(lo, cdf) + table.error_mass(hi, cdf);
+        let p = integrate(
+            "tabulated virgin pressure",
+            |u: f64| Ok::<_, GwError>(table.force(sigma * u - lo) * self.normal.pdf(u)),
+            &us,
+            true,
+            &self.scan_rule,
+            // for bracketing and the film term's slope: the evaluated pressure decides
+            QuadTolerance {
+                rel: 1e-3,
+                rel_of_abs: 1e-4,
+                abs: 0.0,
+                ..tol
+            },
+        )?;
+        Ok(VirginWork {
+            work: Estimate {
+                value: n * w.value,
+                error: n * (w.error + table_error),
+            },
+            pressure: n * p.value,
+        })
+    }
+
+    /// The approach work down to `deep`, the deepest separation D of a flat-loaded
+    /// `history` (J/m^2), the other way round (Fubini): W(D) = N integral R(h - D) phi(h) dh
+    /// over the heights in contact at D, with R(x) the work of one asperity reloading up to
+    /// its own largest interference x (above D no asperity is loaded beyond its delta_max,
+    /// so each one's history is fixed along the way). R depends on x alone, so it is
+    /// tabulated once per surface and tolerance decade (`ReloadTable`, to a tenth of
+    /// `rel_of_abs`) and serves every cycle. The outer quadrature aims at half of
+    /// max(`abs`, `rel_of_abs` N integral |R| phi); the estimate adds N integral e(h - D)
+    /// phi(h) dh, e the table's error estimate piece by piece. The pressure bound above D
+    /// is N integral P(h - D) phi(h) dh, P the table's bound on each asperity's largest
+    /// force on its reload (each reload curve is crossed from its jump-in up to its
+    /// delta_max on the way to D), plus the quadrature's estimate.
+    fn reload_work(
+        &self,
+        deep: f64,
+        history: &GwHistory,
+        abs: f64,
+        rel_of_abs: f64,
+    ) -> Result<AboveDeepest, GwError> {
+        let Some(points) = self.breakpoints(deep, history, Path::Approach)? else {
+            return Ok(AboveDeepest {
+                deepest: deep,
+                work: Estimate::default(),
+                pressure_bound: 0.0,
+            });
+        };
+        let sigma = self.sigma_s();
+        let n = self.density();
+        let top = TAIL_SIGMAS * sigma;
+        let table = self
+            .reload
+            .table(&self.asperity, 0.1 * rel_of_abs, top - deep)?;
+        let mut us: Vec<f64> = points.iter().map(|h| h / sigma).collect();
+        let (lo, hi) = (us[0], us[us.len() - 1]);
+        us.extend(
+            table
+                .hard_breaks()
+                .iter()
+                .map(|x| (deep + x) / sigma)
+                .filter(|&u| u > lo && u < hi),
+        );
+        us.sort_by(f64::total_cmp);
+        us.dedup();
+        let outer = QuadTolerance {
+            rel: 0.0,
+            rel_of_abs: 0.5 * rel_of_abs,
+            abs: 0.5 * abs / n,
+            max_width: START_PANEL_SIGMAS,
+            max_panels: 20_000,
+            noise: NOISE,
+        };
+        let w = integrate(
+            "approach work to the deepest separation",
+            |u: f64| Ok::<_, GwError>(table.eval(sigma * u - deep) * self.normal.pdf(u)),
+            &us,
+            true,
+            &self.rule,
+            outer,
+        )?;
+        // the table's error, piece by piece, over the mass of heights it serves
+        let cdf = |x: f64| self.normal.cdf(((deep + x) / sigma).clamp(lo, hi));
+        let table_error: f64 = table
+            .pieces_errors()
+            .map(|(a, b, e)| e * (cdf(b) - cdf(a)))
+            .sum();
+        let peak = integrate(
+            "pressure bound above the deepest separation",
+            |u: f64| {
+                Ok::<_, GwError>(table.peak_bound(sigma * u - deep).max(0.0) * self.normal.pdf(u))
+            },
+            &us,
+            true,
+            &self.rule,
+            QuadTolerance {
+                rel: 0.1 * rel_of_abs,
+                abs: 0.0,
+                ..outer
+            },
+        )?;
+        Ok(AboveDeepest {
+            deepest: deep,
+            work: Estimate {
+                value: n * w.value,
+                error: n * (w.error + table_error),
+            },
+            pressure_bound: n * (peak.value + peak.error),
+        })
+    }
+}
+
 impl<M: AsperityModel + Sync> SurfaceLaw for GreenwoodWilliamson<M> {
     type History = GwHistory;
 
@@ -724,6 +921,48 @@ impl<M: AsperityModel + Sync> SurfaceLaw for GreenwoodWilliamson<M> {
             }
             _ => Vec::new(),
         }
+    }
+
+    /// For a history loaded by flats, at or below its deepest separation: N integral
+    /// phi(h) (V(h - lo) - V(h - hi)) dh, V(x) the work of a never-pressed asperity loaded
+    /// to x, from the surface's tabulated virgin loading ([`ReloadTables`]); the pressure
+    /// from the same table. A table or an integral that fails leaves the surface without
+    /// it (eq 17 then integrates evaluated pressures).
+    fn virgin_work(
+        &self,
+        history: &GwHistory,
+        lo: f64,
+        hi: f64,
+        abs: f64,
+        rel_of_abs: f64,
+    ) -> Result<Option<VirginWork>, LawError> {
+        let Some(deep) = history.deepest() else {
+            return Ok(None);
+        };
+        if !(lo < hi && hi <= deep && 0.1 * rel_of_abs >= FINEST_TABLE) {
+            return Ok(None);
+        }
+        Ok(self.virgin_loading(lo, hi, abs, rel_of_abs).ok())
+    }
+
+    /// For a history loaded by a flat to a finite depth: the reload work over the asperities
+    /// and the bound on their largest forces from the surface's tables ([`ReloadTables`],
+    /// docs/theory.md section 6.2). A table
+    /// or an integral that fails leaves the surface without it (it only saves work: eq 17
+    /// then searches from the first touch, and meets any failure of the law there).
+    fn above_deepest(
+        &self,
+        history: &GwHistory,
+        abs: f64,
+        rel_of_abs: f64,
+    ) -> Result<Option<AboveDeepest>, LawError> {
+        let Some(deep) = history.deepest().filter(|d| d.is_finite()) else {
+            return Ok(None);
+        };
+        if 0.1 * rel_of_abs < FINEST_TABLE {
+            return Ok(None);
+        }
+        Ok(self.reload_work(deep, history, abs, rel_of_abs).ok())
     }
 
     /// On retraction: B(d) = N integral over the heights still in contact at d of

@@ -428,3 +428,215 @@ fn bound_and_least<M: AsperityModel + Sync>(
         .fold(0.0, f64::min);
     (bound, least)
 }
+
+/// The approach work above the deepest separation D, integrated over the asperities
+/// (each reloading up to its own delta_max), is the integral of the approach pressure from
+/// D to the reach, computed independently (an adaptive integral over d of the pressure at
+/// 1e-12, split at the declared kinks), within the two error estimates; and the pressure
+/// bound above D is above the approach pressure at 400 separations from D to the reach
+/// (geometric from 1e-6 sigma_s above D, where a reload curve that ends above the virgin
+/// curve peaks) and within 5 % of the largest of them: for impacts to 0.5, -1 and -2
+/// sigma_s, both readings of eq 1, and Maugis-Kim, DMT and Hertz contact.
+#[test]
+fn the_approach_work_above_the_deepest_point_is_the_integral_of_the_approach_pressure() {
+    use contact_core::numeric::{integrate, AdaptiveRule, QuadTolerance, NOISE};
+    let pair = ru_pair();
+    let check = |name: &str, gw: &dyn Fn(f64) -> (f64, f64, f64, f64)| {
+        for deep in [0.5 * SIGMA, -SIGMA, -2.0 * SIGMA] {
+            let (w, w_err, direct, direct_err) = gw(deep);
+            assert!(w > 0.0, "{name}: {w}");
+            assert!(
+                (w - direct).abs() <= 2.0 * (w_err + direct_err) + 1e-12 * w,
+                "{name} at {deep:e}: {w} vs {direct} (estimates {w_err:e}, {direct_err:e})"
+            );
+            assert!(w_err <= 1e-8 * w, "{name}: estimate {w_err:e} of {w}");
+        }
+    };
+    fn both<M: AsperityModel + Sync>(
+        gw: &GreenwoodWilliamson<M>,
+        deep: f64,
+    ) -> (f64, f64, f64, f64) {
+        let hist = gw.load(&gw.virgin(), deep);
+        let above = gw.above_deepest(&hist, 0.0, 1e-10).unwrap().unwrap();
+        let w = above.work;
+        assert_eq!(above.deepest, deep);
+        let reach = gw.reach(&hist, Path::Approach).unwrap();
+        let largest = (0..400)
+            .map(|i| {
+                let x =
+                    deep + 1e-6 * SIGMA * ((reach - deep) / (1e-6 * SIGMA)).powf(i as f64 / 399.0);
+                gw.pressure(x.min(reach), &hist, Path::Approach).unwrap()
+            })
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            above.pressure_bound >= largest && above.pressure_bound <= 1.05 * largest.max(0.0),
+            "bound {:e} against the largest pressure above D {largest:e}",
+            above.pressure_bound
+        );
+        let mut breaks = vec![deep];
+        let mut kinks: Vec<f64> = gw
+            .kinks(&hist)
+            .into_iter()
+            .filter(|&k| k > deep && k < reach)
+            .collect();
+        kinks.sort_by(f64::total_cmp);
+        breaks.extend(kinks);
+        breaks.push(reach);
+        let tol = QuadTolerance {
+            rel: 0.0,
+            rel_of_abs: 1e-12,
+            abs: 0.0,
+            max_width: 0.0,
+            max_panels: 100_000,
+            noise: NOISE,
+        };
+        let direct = integrate(
+            "approach work, directly",
+            |x: f64| gw.pressure(x, &hist, Path::Approach),
+            &breaks,
+            false,
+            &AdaptiveRule::new(6).unwrap(),
+            tol,
+        )
+        .unwrap();
+        (w.value, w.error, direct.value, direct.error)
+    }
+    for modulus in [YieldModulus::AsPrinted, YieldModulus::Composite] {
+        let ek = || EtsionKadin::new(&pair, modulus).unwrap();
+        let mk = GreenwoodWilliamson::new(
+            ElastoPlasticAsperity::new(ek(), MaugisKim::new(dugdale(&pair)).unwrap()),
+            ROUGH,
+            q(1e-12),
+        )
+        .unwrap();
+        check("maugis_kim", &|d| both(&mk, d));
+        let dmt = GreenwoodWilliamson::new(
+            ElastoPlasticAsperity::new(ek(), Dmt::new(dugdale(&pair)).unwrap()),
+            ROUGH,
+            q(1e-12),
+        )
+        .unwrap();
+        check("dmt", &|d| both(&dmt, d));
+    }
+    let hertz = GreenwoodWilliamson::new(
+        ElastoPlasticAsperity::new(
+            EtsionKadin::new(&pair, YieldModulus::AsPrinted).unwrap(),
+            Hertz::new(pair.k()).unwrap(),
+        ),
+        ROUGH,
+        q(1e-12),
+    )
+    .unwrap();
+    check("hertz", &|d| both(&hertz, d));
+    // a virgin surface has no deepest separation
+    assert!(hertz
+        .above_deepest(&hertz.virgin(), 0.0, 1e-10)
+        .unwrap()
+        .is_none());
+}
+
+/// The virgin approach work between two separations, from the tabulated virgin loading,
+/// is the integral of the approach pressure between them, computed independently (an
+/// adaptive integral over d at 1e-12, split at the declared kinks), within the two error
+/// estimates; and the tabulated pressure is the pressure within 1e-2 (its tolerance 1e-3):
+/// on a never-pressed surface (from the first touch down to 2 sigma_s below the mean)
+/// and below the deepest point of a pressed one, both readings of eq 1, Maugis-Kim, DMT
+/// and Hertz contact.
+#[test]
+fn the_virgin_work_from_the_tables_is_the_integral_of_the_approach_pressure() {
+    use contact_core::numeric::{integrate, AdaptiveRule, QuadTolerance, NOISE};
+    fn check<M: AsperityModel + Sync>(name: &str, gw: &GreenwoodWilliamson<M>) {
+        let pressed = gw.load(&gw.virgin(), -0.5 * SIGMA);
+        let virgin = gw.virgin();
+        let reach = gw.reach(&virgin, Path::Approach).unwrap();
+        for (hist, lo, hi) in [
+            (&virgin, -2.0 * SIGMA, reach),
+            (&virgin, 1.0 * SIGMA, 2.0 * SIGMA),
+            (&pressed, -2.5 * SIGMA, -0.5 * SIGMA),
+            (&pressed, -SIGMA, -0.9 * SIGMA),
+        ] {
+            let v = gw.virgin_work(hist, lo, hi, 0.0, 1e-10).unwrap().unwrap();
+            let mut breaks = vec![lo];
+            let mut kinks: Vec<f64> = gw
+                .kinks(hist)
+                .into_iter()
+                .filter(|&k| k > lo && k < hi)
+                .collect();
+            kinks.sort_by(f64::total_cmp);
+            breaks.extend(kinks);
+            breaks.push(hi);
+            let tol = QuadTolerance {
+                rel: 0.0,
+                rel_of_abs: 1e-12,
+                abs: 0.0,
+                max_width: 0.0,
+                max_panels: 100_000,
+                noise: NOISE,
+            };
+            let direct = integrate(
+                "approach work, directly",
+                |x: f64| gw.pressure(x, hist, Path::Approach),
+                &breaks,
+                false,
+                &AdaptiveRule::new(6).unwrap(),
+                tol,
+            )
+            .unwrap();
+            let w = v.work;
+            assert!(
+                (w.value - direct.value).abs()
+                    <= 2.0 * (w.error + direct.error) + 1e-12 * w.value.abs(),
+                "{name} [{lo:e}, {hi:e}]: {} vs {} (estimates {:e}, {:e})",
+                w.value,
+                direct.value,
+                w.error,
+                direct.error
+            );
+            assert!(
+                w.error <= 1e-8 * w.value.abs(),
+                "{name}: estimate {:e} of {}",
+                w.error,
+                w.value
+            );
+            let p = gw.pressure(lo, hist, Path::Approach).unwrap();
+            assert!(
+                (v.pressure - p).abs() <= 1e-2 * p.abs().max(1.0),
+                "{name} at {lo:e}: tabulated {:e}, evaluated {p:e}",
+                v.pressure
+            );
+        }
+        // above the deepest point the approach is not the virgin loading
+        assert!(gw
+            .virgin_work(&pressed, -0.6 * SIGMA, 0.0, 0.0, 1e-10)
+            .unwrap()
+            .is_none());
+    }
+    let pair = ru_pair();
+    for modulus in [YieldModulus::AsPrinted, YieldModulus::Composite] {
+        let ek = || EtsionKadin::new(&pair, modulus).unwrap();
+        let mk = GreenwoodWilliamson::new(
+            ElastoPlasticAsperity::new(ek(), MaugisKim::new(dugdale(&pair)).unwrap()),
+            ROUGH,
+            q(1e-12),
+        )
+        .unwrap();
+        check("maugis_kim", &mk);
+        let dmt = GreenwoodWilliamson::new(
+            ElastoPlasticAsperity::new(ek(), Dmt::new(dugdale(&pair)).unwrap()),
+            ROUGH,
+            q(1e-12),
+        )
+        .unwrap();
+        check("dmt", &dmt);
+    }
+    let hertz = GreenwoodWilliamson::new(
+        ElastoPlasticAsperity::new(
+            EtsionKadin::new(&pair, YieldModulus::AsPrinted).unwrap(),
+            Hertz::new(pair.k()).unwrap(),
+        ),
+        ROUGH,
+        q(1e-12),
+    )
+    .unwrap();
+    check("hertz", &hertz);
+}

@@ -1,0 +1,461 @@
+//! The reload work of one asperity, tabulated once per surface: what eq 17 needs of the
+//! approach above the deepest separation a flat reached (docs/theory.md section 6.2).
+
+use crate::error::GwError;
+use crate::virgin::{VirginTable, VirginTables};
+use contact_core::numeric::{integrate, AdaptiveRule, QuadTolerance, NOISE};
+use contact_core::{par, AsperityHistory, AsperityModel, CoreError, Path};
+use std::sync::{Arc, Mutex};
+
+/// Chebyshev-Lobatto points per piece (a polynomial of degree 16).
+pub(crate) const NODES: usize = 17;
+/// Halvings of a block before a piece is accepted with the error it has.
+pub(crate) const MAX_DEPTH: u32 = 24;
+
+/// The Chebyshev-Lobatto points cos(j pi / 16), j = 0..=16.
+fn lobatto() -> &'static [f64; NODES] {
+    static POINTS: std::sync::OnceLock<[f64; NODES]> = std::sync::OnceLock::new();
+    POINTS.get_or_init(|| {
+        std::array::from_fn(|j| (std::f64::consts::PI * j as f64 / (NODES - 1) as f64).cos())
+    })
+}
+
+/// One piece of the table: R (J) and the peak force P (N) at the Chebyshev-Lobatto points
+/// of [a, b], and the estimates of their interpolation errors anywhere on it.
+#[derive(Debug, Clone)]
+pub(crate) struct Piece {
+    a: f64,
+    b: f64,
+    values: [f64; NODES],
+    error: f64,
+    peaks: [f64; NODES],
+    peak_error: f64,
+}
+
+impl Piece {
+    /// The point of node `j` (x_0 = b, x_16 = a).
+    pub(crate) fn node(a: f64, b: f64, j: usize) -> f64 {
+        0.5 * (a + b) + 0.5 * (b - a) * lobatto()[j]
+    }
+
+    /// The interpolant of `values` at `x` (barycentric formula of the second kind on the
+    /// Lobatto points of [a, b]: weights (-1)^j, halved at both ends).
+    pub(crate) fn interpolate(a: f64, b: f64, values: &[f64; NODES], x: f64) -> f64 {
+        let t = (2.0 * x - a - b) / (b - a);
+        let (mut num, mut den) = (0.0, 0.0);
+        for (j, (&tj, &v)) in lobatto().iter().zip(values).enumerate() {
+            let diff = t - tj;
+            if diff == 0.0 {
+                return v;
+            }
+            let mut w = if j % 2 == 0 { 1.0 } else { -1.0 };
+            if j == 0 || j == NODES - 1 {
+                w *= 0.5;
+            }
+            let c = w / diff;
+            num += c * v;
+            den += c;
+        }
+        num / den
+    }
+
+    /// The interpolation error estimate: the sum of the three highest Chebyshev
+    /// coefficients' magnitudes (where the series has converged they bound its tail).
+    pub(crate) fn tail(values: &[f64; NODES]) -> f64 {
+        let n = NODES - 1;
+        (n - 2..=n)
+            .map(|k| {
+                let mut c = 0.0;
+                for (j, v) in values.iter().enumerate() {
+                    let w = if j == 0 || j == n { 0.5 } else { 1.0 };
+                    c += w * v * (std::f64::consts::PI * (k * j) as f64 / n as f64).cos();
+                }
+                let c = 2.0 * c / n as f64;
+                if k == n {
+                    0.5 * c.abs()
+                } else {
+                    c.abs()
+                }
+            })
+            .sum()
+    }
+}
+
+/// R(x) = integral from j(x) to x of F(w; delta_max = x, approach) dw (J), the work of one
+/// asperity reloading to its own largest interference x (m), with j(x) its jump-in; zero
+/// where x <= j(x). On a flat's history the asperity of height h has x = h - D, so the
+/// approach work above D is N integral R(h - D) phi(h) dh. Beside it P(x), the largest
+/// force on that reload: F(x) where no quadrature node exceeds it (then exactly the end
+/// value), else the peak found by a golden-section search around the best node, raised by
+/// PEAK_MARGIN.
+///
+/// Tabulated in pieces of degree 16 in x, on fixed blocks: their ends are the virgin
+/// jump-in, zero, the asperity's plastic breaks and the doubling points 2^k R/1000 (R the
+/// asperity's radius). Each block is halved until the three
+/// highest Chebyshev coefficients of each piece sum to at most `eps` times the largest |R|
+/// on the block (likewise P). The blocks do not depend on what was asked first, so neither
+/// does a result.
+#[derive(Debug, Clone)]
+pub(crate) struct ReloadTable {
+    eps: f64,
+    /// Block ends built so far, increasing ([`next_end`]).
+    ends: Vec<f64>,
+    /// The asperity's hard breaks (virgin jump-in, zero, plastic breaks), increasing.
+    breaks: Vec<f64>,
+    pieces: Vec<Piece>,
+}
+
+impl ReloadTable {
+    /// The covered range's upper end (m).
+    pub(crate) fn x_max(&self) -> f64 {
+        *self.ends.last().expect("a table has a block")
+    }
+
+    /// The lower end: the virgin jump-in (m); R = 0 below.
+    pub(crate) fn x_min(&self) -> f64 {
+        self.ends[0]
+    }
+
+    /// The ends of the blocks that bound a kink of R (the virgin jump-in, zero and the
+    /// plastic breaks), m.
+    pub(crate) fn hard_breaks(&self) -> &[f64] {
+        &self.breaks
+    }
+
+    /// The piece that holds x (the last one beyond); the table has at least one piece
+    /// whenever x_max > x_min, which is when it is asked for values above x_min.
+    fn piece(&self, x: f64) -> &Piece {
+        let i = self.pieces.partition_point(|p| p.b < x);
+        &self.pieces[i.min(self.pieces.len() - 1)]
+    }
+
+    /// R(x) (J), x within [x_min, x_max]; 0 below x_min.
+    pub(crate) fn eval(&self, x: f64) -> f64 {
+        if x <= self.x_min() || self.pieces.is_empty() {
+            return 0.0;
+        }
+        let p = self.piece(x);
+        Piece::interpolate(p.a, p.b, &p.values, x)
+    }
+
+    /// An upper bound on the largest force (N) of the asperity on its reload up to x:
+    /// the interpolated peak plus the piece's error estimate; 0 below x_min.
+    pub(crate) fn peak_bound(&self, x: f64) -> f64 {
+        if x <= self.x_min() || self.pieces.is_empty() {
+            return 0.0;
+        }
+        let p = self.piece(x);
+        Piece::interpolate(p.a, p.b, &p.peaks, x) + p.peak_error
+    }
+
+    /// Each piece's range and the error estimate of R on it (m, m, J).
+    pub(crate) fn pieces_errors(&self) -> impl Iterator<Item = (f64, f64, f64)> + '_ {
+        self.pieces.iter().map(|p| (p.a, p.b, p.error))
+    }
+}
+
+/// One R(x) by an adaptive integral to `rel` of the integral of |F|, split at the
+/// asperity's kinks; the force rises like a square root from the jump-in at worst (the
+/// stable branch's end), hence the edge substitution there.
+fn reload_work<M: AsperityModel>(
+    asperity: &M,
+    x: f64,
+    rule: &AdaptiveRule,
+    rel: f64,
+) -> Result<(f64, f64), GwError> {
+    let hist = AsperityHistory { delta_max: x };
+    let fail = |source| GwError::Asperity {
+        height: x,
+        d: 0.0,
+        source,
+    };
+    let j = asperity.jump_in(hist).map_err(fail)?;
+    if !(x > j) {
+        return Ok((0.0, 0.0));
+    }
+    let finite = |f: f64| {
+        if f.is_finite() {
+            Ok(f)
+        } else {
+            Err(GwError::LawNotFinite {
+                height: x,
+                d: 0.0,
+                value: f,
+            })
+        }
+    };
+    let end = finite(asperity.force(x, hist, Path::Approach).map_err(fail)?)?;
+    let mut inner = (f64::NEG_INFINITY, x);
+    let mut breaks = vec![j];
+    let mut kinks: Vec<f64> = asperity
+        .kinks(hist)
+        .map_err(fail)?
+        .into_iter()
+        .flatten()
+        .filter(|&k| k > j && k < x)
+        .collect();
+    kinks.sort_by(f64::total_cmp);
+    breaks.extend(kinks);
+    breaks.push(x);
+    let tol = QuadTolerance {
+        rel: 0.0,
+        rel_of_abs: rel,
+        abs: 0.0,
+        max_width: 0.0,
+        max_panels: 20_000,
+        noise: NOISE,
+    };
+    let r = integrate(
+        "reload work of one asperity",
+        |w: f64| {
+            let f = finite(asperity.force(w, hist, Path::Approach).map_err(fail)?)?;
+            if f > inner.0 {
+                inner = (f, w);
+            }
+            Ok::<_, GwError>(f)
+        },
+        &breaks,
+        true,
+        rule,
+        tol,
+    )?;
+    if !(inner.0 > end) {
+        return Ok((r.value, end));
+    }
+    // a peak inside: golden-section search around the best node, within PEAK_BRACKET of
+    // the reload's range either side, to PEAK_WIDTH of that range
+    let force = |w: f64| -> Result<f64, GwError> {
+        finite(asperity.force(w, hist, Path::Approach).map_err(fail)?)
+    };
+    let half = PEAK_BRACKET * (x - j);
+    let (mut a, mut b) = ((inner.1 - half).max(j), (inner.1 + half).min(x));
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+    let (mut fc, mut fd) = (force(c)?, force(d)?);
+    let mut best = inner.0.max(fc).max(fd);
+    while b - a > PEAK_WIDTH * (x - j) {
+        if fc > fd {
+            (b, d, fd) = (d, c, fc);
+            c = b - g * (b - a);
+            fc = force(c)?;
+            best = best.max(fc);
+        } else {
+            (a, c, fc) = (c, d, fd);
+            d = a + g * (b - a);
+            fd = force(d)?;
+            best = best.max(fd);
+        }
+    }
+    Ok((r.value, best + PEAK_MARGIN * best.abs()))
+}
+
+/// Gauss-Legendre nodes per half panel of each R's integral (the surfaces' default).
+const RULE_NODES: usize = 6;
+/// Half the bracket of the search for a force peak inside a reload, in the reload's range.
+const PEAK_BRACKET: f64 = 0.02;
+/// The golden-section search for a peak stops at this fraction of the reload's range
+/// (where the force is flat to about its square, far below PEAK_TOLERANCE).
+const PEAK_WIDTH: f64 = 1e-5;
+/// Headroom on a force peak found inside a reload.
+const PEAK_MARGIN: f64 = 1e-6;
+/// The peak force is tabulated to this fraction of its largest value on a block.
+const PEAK_TOLERANCE: f64 = 1e-4;
+/// A table of more pieces than this is a failure (the surface then goes without it).
+const MAX_PIECES: usize = 4096;
+
+impl ReloadTable {
+    fn start<M: AsperityModel>(asperity: &M, eps: f64) -> Result<Self, GwError> {
+        let breaks = hard_ends(asperity)?;
+        Ok(Self {
+            ends: vec![breaks[0]],
+            breaks,
+            eps,
+            pieces: Vec::new(),
+        })
+    }
+
+    /// The table with every block up to one that covers `x_need`, built ([`next_end`]).
+    fn extended<M: AsperityModel + Sync>(
+        mut self,
+        asperity: &M,
+        x_need: f64,
+        rule: &AdaptiveRule,
+    ) -> Result<Self, GwError> {
+        let unit = 1e-3 * asperity.radius();
+        let mut blocks = Vec::new();
+        let mut last = self.x_max();
+        while last < x_need {
+            let next = next_end(last, &self.breaks, unit);
+            blocks.push((last, next));
+            self.ends.push(next);
+            last = next;
+        }
+        let rel = self.eps / 16.0;
+        for (a, b) in blocks {
+            let xs: Vec<f64> = (0..NODES).map(|j| Piece::node(a, b, j)).collect();
+            let both = split(par::map(&xs, |&x| reload_work(asperity, x, rule, rel))?);
+            let scale = |v: &[f64; NODES]| v.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            let tol = (self.eps * scale(&both.0), PEAK_TOLERANCE * scale(&both.1));
+            self.refine(asperity, a, b, both, tol, 0, rule)?;
+        }
+        Ok(self)
+    }
+
+    /// Accepts [a, b] as one piece when the tails of R and P are within `tol` (J, N),
+    /// else halves it (at the geometric mean where it spans more than a factor 4 above
+    /// zero).
+    #[allow(clippy::too_many_arguments)]
+    fn refine<M: AsperityModel + Sync>(
+        &mut self,
+        asperity: &M,
+        a: f64,
+        b: f64,
+        (values, peaks): ([f64; NODES], [f64; NODES]),
+        tol: (f64, f64),
+        depth: u32,
+        rule: &AdaptiveRule,
+    ) -> Result<(), GwError> {
+        if self.pieces.len() >= MAX_PIECES {
+            return Err(CoreError::NoConvergence {
+                what: "reload-work table",
+                iterations: MAX_PIECES,
+            }
+            .into());
+        }
+        let error = Piece::tail(&values);
+        let peak_error = Piece::tail(&peaks);
+        if (error <= tol.0 && peak_error <= tol.1) || depth >= MAX_DEPTH {
+            self.pieces.push(Piece {
+                a,
+                b,
+                values,
+                error,
+                peaks,
+                peak_error,
+            });
+            return Ok(());
+        }
+        let m = if a > 0.0 && b > 4.0 * a {
+            (a * b).sqrt()
+        } else {
+            0.5 * (a + b)
+        };
+        let rel = self.eps / 16.0;
+        let xs: Vec<f64> = (0..NODES)
+            .map(|j| Piece::node(a, m, j))
+            .chain((0..NODES).map(|j| Piece::node(m, b, j)))
+            .collect();
+        let mut v = par::map(&xs, |&x| reload_work(asperity, x, rule, rel))?;
+        let right = split(v.split_off(NODES));
+        let left = split(v);
+        self.refine(asperity, a, m, left, tol, depth + 1, rule)?;
+        self.refine(asperity, m, b, right, tol, depth + 1, rule)
+    }
+}
+
+/// The end of the block after `last` (m): the next of the hard `breaks` or of the doubling
+/// points `unit` 2^k, whichever comes first. The blocks so depend on the asperity alone,
+/// and a break beyond the range asked leaves the blocks within it as they are (a
+/// material that never yields in range gives the elastic law's table, to the bit).
+pub(crate) fn next_end(last: f64, breaks: &[f64], unit: f64) -> f64 {
+    let mut doubling = unit;
+    while doubling <= last {
+        doubling *= 2.0;
+    }
+    match breaks.iter().copied().find(|&b| b > last) {
+        Some(b) if b < doubling => b,
+        _ => doubling,
+    }
+}
+
+/// The hard breaks of `asperity` (virgin jump-in, zero, plastic breaks), increasing: the
+/// first block ends of the tables.
+pub(crate) fn hard_ends<M: AsperityModel>(asperity: &M) -> Result<Vec<f64>, GwError> {
+    let j0 = asperity
+        .jump_in(AsperityHistory::VIRGIN)
+        .map_err(|source| GwError::Asperity {
+            height: 0.0,
+            d: 0.0,
+            source,
+        })?;
+    let mut ends = vec![j0.min(0.0)];
+    if j0 < 0.0 {
+        ends.push(0.0);
+    }
+    let mut breaks: Vec<f64> = asperity
+        .plastic_breaks()
+        .into_iter()
+        .filter(|b| b.is_finite() && *b > 0.0)
+        .collect();
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup();
+    ends.extend(breaks);
+    Ok(ends)
+}
+
+/// NODES pairs (R, P) as two arrays.
+fn split(v: Vec<(f64, f64)>) -> ([f64; NODES], [f64; NODES]) {
+    let mut out = ([0.0; NODES], [0.0; NODES]);
+    for (j, (r, p)) in v.into_iter().take(NODES).enumerate() {
+        out.0[j] = r;
+        out.1[j] = p;
+    }
+    out
+}
+
+/// The reload work of one asperity, tabulated ([`crate::GreenwoodWilliamson`] builds it
+/// on first use by eq 17's search, one table per tolerance decade). It depends on the
+/// asperity model alone, not on the roughness: surfaces of the same asperity may share it
+/// ([`crate::GreenwoodWilliamson::with_reload_tables`]), as the points of a design map do.
+#[derive(Debug, Default)]
+pub struct ReloadTables {
+    reload: Mutex<Vec<Arc<ReloadTable>>>,
+    virgin: VirginTables,
+}
+
+impl ReloadTables {
+    fn lock(&self) -> std::sync::MutexGuard<'_, Vec<Arc<ReloadTable>>> {
+        self.reload.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The table of `asperity` to within `eps` (rounded down to a power of ten) covering
+    /// x up to `x_need` (m). Only the table of that very decade serves, so a result never
+    /// depends on which tables were built before. Built outside the lock: two callers at
+    /// once may both build, and the same blocks give the same table either way.
+    pub(crate) fn table<M: AsperityModel + Sync>(
+        &self,
+        asperity: &M,
+        eps: f64,
+        x_need: f64,
+    ) -> Result<Arc<ReloadTable>, GwError> {
+        // its own rule, so a table does not depend on the surface that built it
+        let rule = &AdaptiveRule::new(RULE_NODES)?;
+        let eps = 10f64.powf(eps.log10().floor());
+        let found = self.lock().iter().find(|t| t.eps == eps).cloned();
+        if let Some(t) = &found {
+            if t.x_max() >= x_need {
+                return Ok(t.clone());
+            }
+        }
+        let base = match found {
+            Some(t) => (*t).clone(),
+            None => ReloadTable::start(asperity, eps)?,
+        };
+        let table = Arc::new(base.extended(asperity, x_need, rule)?);
+        let mut tables = self.lock();
+        tables.retain(|t| t.eps != table.eps);
+        tables.push(table.clone());
+        Ok(table)
+    }
+
+    /// The virgin-loading table of `asperity` to within `eps` covering x up to `x_need`
+    /// (see [`VirginTables::table`]).
+    pub(crate) fn virgin<M: AsperityModel + Sync>(
+        &self,
+        asperity: &M,
+        eps: f64,
+        x_need: f64,
+    ) -> Result<Arc<VirginTable>, GwError> {
+        self.virgin.table(asperity, eps, x_need)
+    }
+}
