@@ -275,14 +275,60 @@ fn solve_eq17<S: SurfaceLaw>(
     let mut hi = top;
     let mut work = 0.0; // integral of p_L from hi to top
     let mut work_error = 0.0;
-    let mut step = match guess {
+    // below the deepest separation reached before, when the surface gives the work above
+    // it and the balance is shown not to close there: the search starts at D
+    let start = below_deepest(surface, history, balance, quad, top)?;
+    // twice the depth the energy left at D would reach at D's pressure (the pressure only
+    // grows below D, so the balance closes before), at least a thousandth of sigma and at
+    // most a quarter
+    let below = |s: &Start| (START_DEPTHS * s.depth).clamp(1e-3 * sigma, 0.25 * sigma);
+    let mut step = match (&start, guess) {
+        // from where the balance is shown open down to D first
+        (Some(s), _) if s.safe > s.d => s.safe - s.d,
+        (Some(s), _) => below(s),
         // a quarter of sigma past the guess: between cycles d_e moves by less
-        Some(g) if g < top => top - g + 0.25 * sigma,
+        (None, Some(g)) if g < hi => hi - g + 0.25 * sigma,
         _ => 0.25 * sigma,
     };
+    let mut next_step = None;
+    let mut first_lo = None;
+    if let Some(s) = &start {
+        if s.safe > s.d {
+            // the work above `safe`: W(D) less the integral from D to `safe`, on the panels
+            // the first step then finds again (the memo holds their pressures)
+            let (int, _) = integral(&ap, s.d, s.safe)?;
+            (hi, work, work_error) = (s.safe, s.work.value - int.value, s.work.error + int.error);
+            next_step = Some(below(s));
+            // exactly D, so the step's panels are those just integrated
+            first_lo = Some(s.d);
+        } else {
+            (hi, work, work_error) = (s.d, s.work.value, s.work.error);
+        }
+    }
     let floor = scales.deepest.max(top - DEPTH_LIMIT * sigma);
+    // the approach pressures evaluated lie below where the search started (the work above
+    // it carries its own error)
+    let hi_start = hi;
     while hi > floor {
-        let lo = hi - step;
+        // where the approach below is the virgin loading and the surface tabulates it,
+        // the search needs no pressures but the last few
+        if next_step.is_none() {
+            let above = Above {
+                hi,
+                work: Estimate {
+                    value: work,
+                    error: work_error,
+                },
+                // the evaluated pressures' share of the work above hi
+                pressures_error: ap.error_integral(hi, top.min(hi_start)),
+                step,
+                floor,
+            };
+            if let Some(found) = tabulated(surface, history, balance, quad, above)? {
+                return Ok(found);
+            }
+        }
+        let lo = first_lo.take().unwrap_or(hi - step);
         let (int, mut panels) = integral(&ap, lo, hi)?;
         panels.sort_by(|a, b| b.a.total_cmp(&a.a));
         if let Some(closure) = first_closure(&panels, work, film, energy, tol_d)? {
@@ -321,7 +367,7 @@ fn solve_eq17<S: SurfaceLaw>(
                     break;
                 }
             }
-            let pressures_error = ap.error_integral(x, top);
+            let pressures_error = ap.error_integral(x, top.min(hi_start));
             let error = correction.abs() + (work_error + pressures_error) / slope.abs();
             let from_pressures = pressures_error / slope.abs();
             return Ok((
@@ -343,15 +389,287 @@ fn solve_eq17<S: SurfaceLaw>(
         } else {
             f64::INFINITY
         };
-        step = (2.0 * step)
-            .min(remaining.max(0.25 * sigma))
-            .min(64.0 * sigma);
+        step = next_step.take().unwrap_or_else(|| {
+            (2.0 * step)
+                .min(remaining.max(0.25 * sigma))
+                .min(64.0 * sigma)
+        });
     }
     Err(SwitchError::EnergyNotAbsorbed {
         energy,
         d: hi,
         absorbed: work,
     })
+}
+
+/// Where eq 17's search starts when it need not cross the approach above the deepest
+/// separation reached before.
+struct Start {
+    /// The deepest separation D (m).
+    d: f64,
+    /// From here (m, >= D) up the balance is shown open (the bounds of [`below_deepest`]).
+    safe: f64,
+    /// The approach work above it (J/m^2).
+    work: Estimate,
+    /// The depth below D at which the balance would close were the pressure to stay at
+    /// p(D): (E_I - W(D) - film(p(D))) / p(D) (m).
+    depth: f64,
+}
+
+/// The first step of eq 17's search below D, in depths the energy left at D would reach
+/// at D's pressure.
+const START_DEPTHS: f64 = 2.0;
+/// Relative headroom on a scan pressure (its tolerance is 1e-3).
+const SCAN_MARGIN: f64 = 1e-2;
+/// The largest spacing of the scan pressures that check the approach above D, in
+/// sigma_s.
+const ABOVE_DEEPEST_SPACING: f64 = 0.5;
+/// The first of them, in sigma_s above D; the next ones twice as far, up to the largest
+/// spacing.
+const ABOVE_DEEPEST_NEAR: f64 = 1e-4;
+
+/// The start of eq 17's search at the deepest separation D of the history, when the
+/// surface knows the approach above D ([`SurfaceLaw::above_deepest`]: the work W(D),
+/// integrated over its asperities, and a bound P on the pressure above D) and the balance
+/// G(x) = W(x) + film(p(x)) - E_I stays open above D, as far as these bounds show:
+/// - W(D) + its estimate + film(max(P, p(D) + its estimate)) < E_I, with p(D) > 0: the
+///   film term is below that everywhere above D;
+/// - and the work above D never exceeds W(D): W(x) = W(D) - integral from D to x of p,
+///   the integral checked to stay positive on scan pressures at offsets from D growing
+///   geometrically from ABOVE_DEEPEST_NEAR sigma_s up to steps of ABOVE_DEEPEST_SPACING
+///   sigma_s, its compressive part counted at each interval's smaller end and its tensile
+///   part at the larger one (the approach pressure is compressive from D up to where the
+///   contact edge's adhesion takes over, and W(top) = 0 < W(D)).
+///
+/// Otherwise None: the search starts at the first touch as before. Below D the approach
+/// pressure is the virgin one (every asperity in contact is loaded beyond its delta_max),
+/// so nothing else changes (docs/theory.md section 6.2).
+fn below_deepest<S: SurfaceLaw>(
+    surface: &S,
+    history: &S::History,
+    balance: &Balance,
+    quad: QuadTolerance,
+    top: f64,
+) -> Result<Option<Start>, SwitchError> {
+    let Some(above) = surface.above_deepest(history, quad.abs, quad.rel_of_abs)? else {
+        return Ok(None);
+    };
+    let (d, work) = (above.deepest, above.work);
+    let sigma = balance.scales.roughness;
+    if !(d < top && d > balance.scales.deepest && work.value.is_finite()) {
+        return Ok(None);
+    }
+    // the balance at D from below (not recorded with the approach's evaluations: a search
+    // that starts at the top after all is then the same to the bit as one that never
+    // looked here)
+    let (energy, film) = (balance.energy, balance.film);
+    let at_d = surface.pressure_estimate(d, history, Path::Approach)?;
+    if !(at_d.value > 0.0 && above.pressure_bound.is_finite())
+        || work.value + work.error + film.energy(at_d.value + at_d.error) >= energy
+    {
+        return Ok(None);
+    }
+    // above D, on scan pressures at offsets from D growing geometrically, then evenly up to
+    // the first touch: on the interval from x_k to x_k+1 the work is at most
+    // W(D) + its estimate - C_k + T_k+1, the compressive work from D counted at each
+    // interval's smaller end (less the scan's error) and the tensile work at its larger
+    // end, and the film term at most film(P), P the surface's bound on the pressure
+    let film_high = film.energy(above.pressure_bound.max(at_d.value + at_d.error));
+    let mut xs = Vec::new();
+    let mut offset = ABOVE_DEEPEST_NEAR * sigma;
+    while d + offset < top {
+        xs.push(d + offset);
+        offset += offset.min(ABOVE_DEEPEST_SPACING * sigma);
+    }
+    xs.push(top);
+    let ps = par::map(&xs, |&x| surface.pressure_scan(x, history, Path::Approach))?;
+    let base = work.value + work.error + film_high - energy;
+    // interval k runs from starts[k] (D, then the samples); open[k]: its bound is below E_I
+    let (mut pushed, mut pulled) = (0.0, 0.0);
+    let mut prev = (d, at_d.value);
+    let mut open = Vec::with_capacity(xs.len());
+    let mut starts = Vec::with_capacity(xs.len());
+    for (&x, &p) in xs.iter().zip(&ps) {
+        let dx = x - prev.0;
+        let credit = pushed;
+        pushed += dx * prev.1.max(0.0).min(p.max(0.0)) * (1.0 - SCAN_MARGIN);
+        pulled += dx * (-prev.1).max(0.0).max((-p).max(0.0)) * (1.0 + SCAN_MARGIN);
+        starts.push(prev.0);
+        open.push(base - credit + pulled < 0.0);
+        prev = (x, p);
+    }
+    // the lowest start from which every interval up is open
+    let Some(k) = (0..open.len()).rev().take_while(|&k| open[k]).last() else {
+        return Ok(None);
+    };
+    let safe = starts[k];
+    let p_d = at_d.value;
+    Ok(Some(Start {
+        d,
+        safe,
+        work,
+        depth: (energy - work.value - film.energy(p_d)) / p_d,
+    }))
+}
+
+/// Where eq 17's search stands: at `hi` (m), with the approach work above it (J/m^2) and
+/// the part of its estimate the evaluated pressures' own estimates make (J/m^2), the next
+/// step (m) and the depth it may not go below (m).
+struct Above {
+    hi: f64,
+    work: Estimate,
+    pressures_error: f64,
+    step: f64,
+    floor: f64,
+}
+
+/// eq 17 below `above.hi` on the surface's tabulated virgin loading
+/// ([`SurfaceLaw::virgin_work`]), when it offers it there (None otherwise, and where the
+/// balance is already closed at the first sample, in the tensile well):
+/// - the balance G(x) = W(x) + film(p(x)) - E_I, with W and p from the tables, is sampled
+///   in steps growing as the search from the top grows them, to the first sample with
+///   p > 0 and G >= 0;
+/// - the root of the tabulated G in that step (Brent), then Newton on G with the evaluated
+///   pressure p(x) and the tabulated work to the root within a tenth of the d_e target;
+/// - the error estimate: the last correction, plus the work's estimate (above and the
+///   tables') and the film term's share of the pressure's estimate, over |dG/dx|. The
+///   second value returned is the evaluated pressures' share (those above hi and the last
+///   one's), which a tighter energy tolerance cannot reduce.
+fn tabulated<S: SurfaceLaw>(
+    surface: &S,
+    history: &S::History,
+    balance: &Balance,
+    quad: QuadTolerance,
+    above: Above,
+) -> Result<Option<(EndOfImpact, f64)>, SwitchError> {
+    let Above {
+        hi,
+        work,
+        pressures_error,
+        mut step,
+        floor,
+    } = above;
+    let (energy, film) = (balance.energy, balance.film);
+    let sigma = balance.scales.roughness;
+    let tol_d = balance.precision.d_e * sigma;
+    // the balance at x from the tables: (G, p, the work from x to hi)
+    let at = |x: f64| -> Result<Option<(f64, f64, Estimate)>, SwitchError> {
+        let Some(v) = surface.virgin_work(history, x, hi, quad.abs, quad.rel_of_abs)? else {
+            return Ok(None);
+        };
+        let w = work.value + v.work.value;
+        Ok(Some((
+            w + film.energy(v.pressure) - energy,
+            v.pressure,
+            v.work,
+        )))
+    };
+    let mut upper = (hi, f64::NEG_INFINITY);
+    let bracket = loop {
+        let lo = (upper.0 - step).max(floor);
+        let Some((g, p, v)) = at(lo)? else {
+            return Ok(None);
+        };
+        if g >= 0.0 && !(p > 0.0) {
+            // closed in the tensile well: the search with panels decides
+            return Ok(None);
+        }
+        if p > 0.0 && g >= 0.0 {
+            if upper.0 == hi {
+                // the first sample closes: is the balance open at hi itself?
+                let Some((g_hi, _, _)) = at(hi - 1e-9 * step)? else {
+                    return Ok(None);
+                };
+                if g_hi >= 0.0 {
+                    return Ok(None);
+                }
+                upper.1 = g_hi;
+            }
+            break (
+                Sample { x: lo, f: g },
+                Sample {
+                    x: upper.0,
+                    f: upper.1,
+                },
+            );
+        }
+        if lo <= floor {
+            return Err(SwitchError::EnergyNotAbsorbed {
+                energy,
+                d: lo,
+                absorbed: work.value + v.value,
+            });
+        }
+        let remaining = if p > 0.0 {
+            (energy - work.value - v.value) / p
+        } else {
+            f64::INFINITY
+        };
+        step = (2.0 * step)
+            .min(remaining.max(0.25 * sigma))
+            .min(64.0 * sigma);
+        upper = (lo, g);
+    };
+    let g_of = |x: f64| -> Result<f64, SwitchError> { Ok(at(x)?.map_or(f64::NAN, |(g, _, _)| g)) };
+    let root = brent_from(
+        "eq 17 on the tabulated virgin loading",
+        g_of,
+        bracket.0,
+        bracket.1,
+        // to a thousandth of sigma: Newton with the evaluated pressure goes on from there
+        Tolerance {
+            rel: 0.0,
+            abs: (1e-3 * sigma).max(0.01 * tol_d),
+            max_iter: 200,
+        },
+    );
+    // a table the surface could not give inside the bracket: the search with panels decides
+    let Ok(mut x) = root else {
+        return Ok(None);
+    };
+    // dp/dx of the tabulated pressure, for the film term's share of dG/dx
+    let h = (1e-3 * (bracket.1.x - bracket.0.x)).max(16.0 * f64::EPSILON * x.abs());
+    let (p1, p2) = match (at(x - h)?, at(x + h)?) {
+        (Some(a), Some(b)) => (a.1, b.1),
+        _ => return Ok(None),
+    };
+    let dp = (p2 - p1) / (2.0 * h);
+    let mut correction = f64::INFINITY;
+    let (mut p_x, mut slope, mut errors) = (0.0, -1.0, (0.0, 0.0));
+    for _ in 0..6 {
+        let e = surface.pressure_estimate(x, history, Path::Approach)?;
+        let Some((_, _, v)) = at(x)? else {
+            return Ok(None);
+        };
+        p_x = e.value;
+        let g = work.value + v.value + film.energy(p_x) - energy;
+        slope = -p_x + film.thickness / film.youngs_modulus * p_x * dp;
+        if !(slope < 0.0) {
+            slope = -p_x.abs().max(f64::MIN_POSITIVE);
+        }
+        errors = (
+            work.error + v.error,
+            pressures_error + film.thickness / film.youngs_modulus * p_x.abs() * e.error,
+        );
+        correction = -g / slope;
+        x += correction;
+        if correction.abs() <= 0.1 * tol_d {
+            break;
+        }
+    }
+    if !(p_x > 0.0) {
+        // a closure in the tensile well: the search with panels decides
+        return Ok(None);
+    }
+    let error = correction.abs() + (errors.0 + errors.1) / slope.abs();
+    Ok(Some((
+        EndOfImpact {
+            d_e: x,
+            error,
+            pressure: p_x,
+        },
+        errors.1 / slope.abs(),
+    )))
 }
 
 /// Gauss-Legendre nodes of the work from a Newton iterate to its panel's top.
@@ -612,7 +930,7 @@ pub fn unload<S: SurfaceLaw>(
 /// the geometric start of the grid, where the contact is still compressive.
 const SCAN_FIRST_BATCH: usize = 24;
 /// Samples per batch after it (each batch in parallel).
-const SCAN_BATCH: usize = 8;
+const SCAN_BATCH: usize = 4;
 /// The scan stops once the surface's tension bound beyond the next sample is below this
 /// fraction of the most tensile sample: the scan's pressures err by about 1e-3 of the
 /// forces summed, far less than the headroom.
