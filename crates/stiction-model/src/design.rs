@@ -19,7 +19,7 @@ use crate::keys::{self, num, Domain, Key, Kind};
 use crate::laws::LawRegistry;
 use crate::scene::Scene;
 use crate::spec::{Drive, SwitchSpec};
-use crate::switch::{SwitchModel, SwitchResult};
+use crate::switch::{SharedTables, SwitchModel, SwitchResult};
 use crate::{Progress, Silent};
 pub use design_sweep::{
     Axis, DesignPoint, Grid, Labels, Level, Map, MapRequest, PointError, Quantity, Requirement,
@@ -38,7 +38,13 @@ pub struct Evaluator<'a> {
     base: Scene,
     registry: &'a LawRegistry,
     guards: Mutex<BTreeMap<&'static str, GuardTally>>,
+    /// Reload-work tables by contact (the resolved contact section and the mode).
+    tables: Mutex<BTreeMap<String, SharedTables>>,
 }
+
+/// Contacts whose reload-work tables an evaluator keeps; past this many it starts afresh
+/// (a sweep over material values makes every point's contact new).
+const KEPT_TABLES: usize = 64;
 
 #[derive(Debug, Clone)]
 struct GuardTally {
@@ -110,7 +116,20 @@ impl<'a> Evaluator<'a> {
             base,
             registry,
             guards: Mutex::new(BTreeMap::new()),
+            tables: Mutex::new(BTreeMap::new()),
         }
+    }
+
+    /// The reload-work tables of `spec`'s contact, shared by every point with an equal
+    /// contact section and mode (within one registry a law's name, parameters and context
+    /// determine it).
+    fn tables_of(&self, spec: &SwitchSpec) -> SharedTables {
+        let key = format!("{:?} {}", spec.contact, spec.common.accuracy);
+        let mut tables = self.tables.lock().unwrap_or_else(|e| e.into_inner());
+        if tables.len() >= KEPT_TABLES && !tables.contains_key(&key) {
+            tables.clear();
+        }
+        tables.entry(key).or_default().clone()
     }
 
     /// The base scene.
@@ -148,8 +167,9 @@ impl<'a> Evaluator<'a> {
     /// [`Evaluator::result`] of a point whose fields may be words.
     pub fn result_at(&self, values: &[(&str, Level<'_>)]) -> Result<SwitchResult, PointError> {
         let spec = self.spec_at(values)?;
-        let model =
-            SwitchModel::build(&spec).map_err(|e| PointError::OutOfDomain(e.without_file()))?;
+        let model = SwitchModel::build(&spec)
+            .map_err(|e| PointError::OutOfDomain(e.without_file()))?
+            .with_tables(self.tables_of(&spec));
         model.run(&Silent).map_err(|e| {
             let m = e.without_file();
             let no_end_of_impact = matches!(

@@ -395,6 +395,16 @@ pub struct SwitchModel<'a> {
     spec: &'a SwitchSpec,
     es: Electrostatics,
     floor: f64,
+    /// Reload-work tables shared with other models of the same contact (plastic, elastic).
+    tables: Option<SharedTables>,
+}
+
+/// The reload-work tables of a contact's two asperities (its own, and the elastic one of
+/// the comparison), for models of equal contacts to share ([`SwitchModel::with_tables`]).
+#[derive(Debug, Clone, Default)]
+pub struct SharedTables {
+    plastic: std::sync::Arc<gw_surface::ReloadTables>,
+    elastic: std::sync::Arc<gw_surface::ReloadTables>,
 }
 
 impl<'a> SwitchModel<'a> {
@@ -406,7 +416,21 @@ impl<'a> SwitchModel<'a> {
         let floor = spec.common.accuracy.targets().pull_out_floor_of_restoring
             * es.restoring_pressure
             / phi;
-        Ok(Self { spec, es, floor })
+        Ok(Self {
+            spec,
+            es,
+            floor,
+            tables: None,
+        })
+    }
+
+    /// The same model drawing on `tables` for the reload work of its asperities (eq 17
+    /// after the first impact). Share them only between models whose contact sections
+    /// are equal (the tables depend on the asperities alone, not on the roughness, the
+    /// switch or the drive); a design map shares them across its points.
+    pub fn with_tables(mut self, tables: SharedTables) -> Self {
+        self.tables = Some(tables);
+        self
     }
 
     /// The resolved electrostatics.
@@ -416,7 +440,12 @@ impl<'a> SwitchModel<'a> {
 
     /// The rough surface the cycles run on (`elastic`: with asperities that never yield).
     pub fn surface(&self, elastic: bool) -> Result<RoughSurface, ModelError> {
-        surface_of(self.spec, self.spec.common.accuracy, self.floor, elastic)
+        let gw = surface_of(self.spec, self.spec.common.accuracy, self.floor, elastic)?;
+        Ok(match &self.tables {
+            Some(t) if elastic => gw.with_reload_tables(t.elastic.clone()),
+            Some(t) => gw.with_reload_tables(t.plastic.clone()),
+            None => gw,
+        })
     }
 
     fn impact(&self) -> Impact {
