@@ -274,8 +274,10 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
     }
 
     /// delta_res where R_eff switches from R_res to eq 12, then the adhesion law's kinks
-    /// shifted by delta_res. Each kind keeps its position at every height: a law that can
-    /// yield lists delta_res first, `None` before yield (nothing bends there then).
+    /// shifted by delta_res; under the bounded reload also the plastic breaks below
+    /// delta_max, where the cap (the virgin loading force) bends or jumps. Each kind keeps
+    /// its position at every height: a law that can yield lists delta_res first, `None`
+    /// before yield (nothing bends there then).
     fn kinks(&self, history: AsperityHistory) -> Result<Vec<Option<f64>>, LawError> {
         let st = self.plasticity.state(history.delta_max);
         let mut k = Vec::with_capacity(4);
@@ -289,6 +291,13 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
                 .into_iter()
                 .map(|x| x.map(|x| x + st.delta_res)),
         );
+        if self.reload == Reload::Bounded {
+            k.extend(
+                self.plastic_breaks()
+                    .into_iter()
+                    .map(|b| cap_kink(b, st.delta_max)),
+            );
+        }
         Ok(k)
     }
 
@@ -309,12 +318,25 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
             return Ok(*k);
         }
         i -= plastic.len();
+        let adhesion = self.adhesion.kinks(st.r_res)?;
+        if let Some(k) = adhesion.get(i) {
+            return Ok(k.map(|x| x + st.delta_res));
+        }
+        if self.reload != Reload::Bounded {
+            return Ok(None);
+        }
+        i -= adhesion.len();
         Ok(self
-            .adhesion
-            .kinks(st.r_res)?
+            .plastic_breaks()
             .get(i)
-            .copied()
-            .flatten()
-            .map(|x| x + st.delta_res))
+            .and_then(|&b| cap_kink(b, st.delta_max)))
     }
+}
+
+/// Under the bounded reload, the interference `b` (m) of a plastic break where the cap of
+/// a reload below `delta_max` bends or jumps: the virgin loading force it caps with does
+/// (delta_CP, and a piecewise law's regime boundaries, such as Kogut-Etsion's jump at
+/// omega = 6). Absent where the reload does not reach it.
+fn cap_kink(b: f64, delta_max: f64) -> Option<f64> {
+    (b < delta_max).then_some(b)
 }

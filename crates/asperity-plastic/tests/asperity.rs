@@ -1,7 +1,7 @@
 //! Behaviour of the elasto-plastic adhesive asperity (paper section 2.2) with the
 //! Maugis-Kim law on the Ru sphere of Table 1 against a rigid flat.
 
-use asperity_plastic::{Elastic, ElastoPlasticAsperity, EtsionKadin, YieldModulus};
+use asperity_plastic::{Elastic, ElastoPlasticAsperity, EtsionKadin, Reload, YieldModulus};
 use contact_core::{
     paper, AdhesionLaw, AsperityHistory, AsperityModel, Material, Pair, Path, PlasticityLaw,
 };
@@ -285,11 +285,34 @@ fn one_kink_is_the_entry_of_the_list() {
             dcp,
             "elastic + MK",
         ),
+        check(
+            &ElastoPlasticAsperity::new(ke, dmt).with_reload(Reload::Bounded),
+            dcp,
+            "KE + DMT, bounded reload",
+        ),
     ];
     // the comparison is not vacuous: every plastic pairing has kinks at some history (the
     // elastic asperity has none here: no delta_res, and Maugis-Kim's junction is a kink
     // only at lambda <= lambda_c, below the paper's lambda)
     assert!(n[..4].iter().all(|&k| k > 0), "{n:?}");
+    // under the bounded reload the cap (the virgin loading force) bends at delta_CP and
+    // jumps at Kogut-Etsion's omega = 6: both are declared below delta_max, and only there
+    let bounded = ElastoPlasticAsperity::new(ke, dmt).with_reload(Reload::Bounded);
+    let breaks = bounded.plastic_breaks();
+    assert!(breaks.len() >= 2, "{breaks:?}");
+    for omega in [3.0, 40.0] {
+        let h = AsperityHistory {
+            delta_max: omega * ke.delta_cp(),
+        };
+        let list = bounded.kinks(h).unwrap();
+        for &b in &breaks {
+            assert_eq!(
+                list.contains(&Some(b)),
+                b < h.delta_max,
+                "break {b:e} at omega {omega}: {list:?}"
+            );
+        }
+    }
 }
 
 /// The tension bound of a plastically deformed asperity holds on every path that does not
