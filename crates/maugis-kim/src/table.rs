@@ -11,12 +11,16 @@
 //! error over the domain, relative to max(|Fbar|, 1), is [`MAX_ERROR`] (test
 //! `the_table_holds_its_bound_over_the_whole_domain`).
 //!
-//! The table is never built whole: it is split into tiles of TILE x TILE entries, each
-//! solved (by the exact stable-point solve) the first time a stencil reaches it and kept for
-//! the life of the process. A switch run needs a few hundred tiles (the lambdas of its
-//! asperities span a narrow band); a design map shares them between all its points.
+//! The table is never built whole: each entry is solved (by the exact stable-point solve)
+//! the first time a stencil reaches it and kept for the life of the process, in a cell of
+//! its own. A switch run needs some ten thousand entries (the lambdas of its asperities
+//! span a narrow band; the paper's switch in fast mode 13,900 of the 606,651); a design map
+//! shares them between all its points. (Tiles of 16 x 16 stencil origins, solved whole
+//! when first reached, solved 2.9 times as many entries on the paper's switch: a fifth of
+//! a fast run's instructions.)
 
 use crate::md::MdCurve;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::OnceLock;
 
 /// Grid: ln lambda from X0 in NX steps of H; y = ln(Delta - Delta_j) from Y0 in NY steps.
@@ -25,9 +29,6 @@ const X0: f64 = -4.0;
 const NX: usize = 551; // to ln lambda = 7
 const Y0: f64 = -12.0;
 const NY: usize = 1101; // to y = 10
-const TILE: usize = 16;
-const TX: usize = NX.div_ceil(TILE);
-const TY: usize = NY.div_ceil(TILE);
 
 /// Largest interpolation error relative to max(|Fbar|, 1) over the table's domain: 2.2e-10
 /// measured on 40,000 random points (median 9.6e-13, 99th percentile 2.0e-11, the largest
@@ -43,14 +44,38 @@ const CORNER_X: f64 = 0.5;
 const LN_LAMBDA_CRITICAL: f64 = -0.064_061_347_311_685_31;
 const CORNER_Y: f64 = -2.0;
 
-/// A tile holds the entries of its TILE x TILE stencil origins and of the 5 rows and
-/// columns after them, so that every stencil lies in one tile (entries on tile edges are
-/// solved twice: (21/16)^2 of the entries in all, for one tile per lookup; a tile of rows
-/// only, with stencils across two tiles, cost as much in all).
-const SIDE: usize = TILE + 5;
-type Tile = Box<[f64; SIDE * SIDE]>;
+/// The table's entries by their bits, row-major (i, j); 0 (the bits of +0.0) until solved.
+/// A solve that fails leaves a NaN, which makes every stencil holding it decline; a solved
+/// +0.0 is kept as -0.0. Two threads that reach a new entry at once may both solve it:
+/// the solve is deterministic, so both store the same bits.
+static ENTRIES: [AtomicU64; NX * NY] = [const { AtomicU64::new(0) }; NX * NY];
 
-static TILES: [OnceLock<Tile>; TX * TY] = [const { OnceLock::new() }; TX * TY];
+/// The Maugis-Kim curve of each row (lambda_i), made once.
+static ROWS: [OnceLock<Option<MdCurve>>; NX] = [const { OnceLock::new() }; NX];
+
+/// One bit per stencil origin (i0, j0), by i0 NY + j0: set once all 36 entries of the
+/// stencil are solved (Release after their stores, so a reader that sees it (Acquire)
+/// sees them).
+static READY: [AtomicU64; (NX * NY).div_ceil(64)] =
+    [const { AtomicU64::new(0) }; (NX * NY).div_ceil(64)];
+
+/// Solves the six entries of row `i` from column `j0` not solved yet (NaN where the solve
+/// fails; the caller keeps the stencil inside the grid).
+#[cold]
+#[inline(never)]
+fn solve_row(i: usize, j0: usize) {
+    let curve = ROWS[i]
+        .get_or_init(|| MdCurve::new((X0 + H * i as f64).exp()).ok())
+        .as_ref();
+    for dj in 0..6 {
+        let cell = &ENTRIES[i * NY + j0 + dj];
+        if cell.load(Ordering::Relaxed) == 0 {
+            let f = node(curve, j0 + dj);
+            let f = if f == 0.0 { -0.0 } else { f };
+            cell.store(f.to_bits(), Ordering::Relaxed);
+        }
+    }
+}
 
 /// Fbar at the grid node (i, j) of one row's `curve` (lambda_i), by the exact solve; NaN
 /// where it fails or off the grid.
@@ -63,23 +88,6 @@ fn node(curve: Option<&MdCurve>, j: usize) -> f64 {
     }
     let delta = curve.junction().delta + (Y0 + H * j as f64).exp();
     curve.stable_point(delta).map_or(f64::NAN, |p| p.force)
-}
-
-/// The tile whose stencil origins are rows ti * TILE.. and columns tj * TILE..
-fn tile(ti: usize, tj: usize) -> &'static [f64; SIDE * SIDE] {
-    TILES[ti * TY + tj].get_or_init(|| {
-        let mut t = Box::new([f64::NAN; SIDE * SIDE]);
-        for r in 0..SIDE {
-            let i = ti * TILE + r;
-            let curve = (i < NX)
-                .then(|| MdCurve::new((X0 + H * i as f64).exp()).ok())
-                .flatten();
-            for c in 0..SIDE {
-                t[r * SIDE + c] = node(curve.as_ref(), tj * TILE + c);
-            }
-        }
-        t
-    })
 }
 
 /// Lagrange weights of the nodes at -2, -1, 0, 1, 2, 3 for the point f in [0, 1).
@@ -130,17 +138,22 @@ pub(crate) fn force(lambda: f64, above_junction: f64) -> Option<f64> {
     let (i, j) = (x as usize, y as usize);
     let wx = weights(x - i as f64);
     let wy = weights(y - j as f64);
-    // the stencil's origin (i - 2, j - 2) and its tile
+    // the stencil's origin (i - 2, j - 2): its 36 entries, solved the first time
     let (i0, j0) = (i - 2, j - 2);
-    let t = tile(i0 / TILE, j0 / TILE);
-    let (r0, c0) = (i0 % TILE, j0 % TILE);
+    let origin = i0 * NY + j0;
+    let (word, bit) = (&READY[origin / 64], 1u64 << (origin % 64));
+    if word.load(Ordering::Acquire) & bit == 0 {
+        for di in 0..6 {
+            solve_row(i0 + di, j0);
+        }
+        word.fetch_or(bit, Ordering::Release);
+    }
     let mut f = 0.0;
     for (di, wi) in wx.iter().enumerate() {
-        let start = (r0 + di) * SIDE + c0;
-        let row = &t[start..start + 6];
+        let start = origin + di * NY;
         let mut s = 0.0;
-        for (w, v) in wy.iter().zip(row) {
-            s += w * v;
+        for (w, cell) in wy.iter().zip(&ENTRIES[start..start + 6]) {
+            s += w * f64::from_bits(cell.load(Ordering::Relaxed));
         }
         f += wi * s;
     }
@@ -164,7 +177,21 @@ pub(crate) const TURNING_ERROR: f64 = 1e-12;
 // every caller allowed the force table may read the turning table
 const _: () = assert!(TURNING_ERROR <= MAX_ERROR);
 
-static TURNING: OnceLock<Box<[f64; TN]>> = OnceLock::new();
+/// The turning table's entries by their bits, 0 until solved (as [`ENTRIES`]).
+static TURNING: [AtomicU64; TN] = [const { AtomicU64::new(0) }; TN];
+
+/// Delta_t at the turning grid's node `i`, solved the first time it is asked for.
+fn turning_entry(i: usize) -> f64 {
+    let cell = &TURNING[i];
+    let bits = cell.load(Ordering::Relaxed);
+    if bits != 0 {
+        return f64::from_bits(bits);
+    }
+    let v = turning_node(i);
+    let v = if v == 0.0 { -0.0 } else { v };
+    cell.store(v.to_bits(), Ordering::Relaxed);
+    v
+}
 
 /// Delta_t at the grid's node `i`, by the exact solve (NaN where it fails).
 fn turning_node(i: usize) -> f64 {
@@ -174,8 +201,9 @@ fn turning_node(i: usize) -> f64 {
 }
 
 /// The turning point's Delta_t at `lambda`, interpolated within [`TURNING_ERROR`] of
-/// max(|Delta_t|, 1) by 6-point Lagrange on a grid of ln lambda built once per process
-/// (1000 exact solves, about 4.4 M instructions); None where the solver must answer (lambda
+/// max(|Delta_t|, 1) by 6-point Lagrange on a grid of ln lambda whose entries are solved
+/// when first asked for (1000 in all, about 13 M instructions had they all been solved at
+/// once; a switch run asks for a few dozen); None where the solver must answer (lambda
 /// within e^0.5 of lambda_c or beyond 2e4, or a failed solve in the stencil).
 pub(crate) fn turning_delta(lambda: f64) -> Option<f64> {
     if !(lambda > 0.0) {
@@ -185,16 +213,13 @@ pub(crate) fn turning_delta(lambda: f64) -> Option<f64> {
     if !(x >= 2.0 && x < (TN - 4) as f64) {
         return None;
     }
-    let t = TURNING.get_or_init(|| {
-        let mut t = Box::new([f64::NAN; TN]);
-        for (i, v) in t.iter_mut().enumerate() {
-            *v = turning_node(i);
-        }
-        t
-    });
     let i = x as usize;
     let w = weights(x - i as f64);
-    let d: f64 = w.iter().zip(&t[i - 2..i + 4]).map(|(w, v)| w * v).sum();
+    let d: f64 = w
+        .iter()
+        .enumerate()
+        .map(|(k, w)| w * turning_entry(i - 2 + k))
+        .sum();
     d.is_finite().then_some(d)
 }
 
