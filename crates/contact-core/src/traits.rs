@@ -495,6 +495,21 @@ pub trait SurfaceLaw: Sync {
         self.pressure(d, history, path)
     }
 
+    /// A rough pressure (Pa) with its error estimate, cheaper than [`Self::pressure_scan`],
+    /// for a search that needs only to know where the pressure is surely compressive
+    /// (value above a few times its estimate): a pull-out scan then evaluates the
+    /// compressive start of the retraction roughly. None (the default) when the surface
+    /// has nothing cheaper than its scan pressure.
+    fn pressure_rough(
+        &self,
+        d: f64,
+        history: &Self::History,
+        path: Path,
+    ) -> Result<Option<Estimate>, LawError> {
+        let _ = (d, history, path);
+        Ok(None)
+    }
+
     /// History after loading to separation `d` (m).
     fn load(&self, history: &Self::History, d: f64) -> Self::History;
 

@@ -936,12 +936,24 @@ const SCAN_BATCH: usize = 4;
 /// forces summed, far less than the headroom.
 const SCAN_STOP: f64 = 0.5;
 
+/// A rough pressure counts as surely compressive when it exceeds this many times its
+/// error estimate.
+const ROUGH_SAFETY: f64 = 4.0;
+
 /// The scan pressures of the pull-out search on `grid`, outward from d_e in batches,
 /// ended early when the surface bounds the tension further out
 /// ([`SurfaceLaw::tension_bound`]) below [`SCAN_STOP`] of the most tensile sample so far
 /// and the last sample is not a local minimum (so the truncated grid offers the
 /// refinement the same candidates as the whole grid, save those the bound rules out),
 /// with the bound where it stopped. Without a bound, every sample.
+///
+/// The compressive start of the retraction is evaluated roughly
+/// ([`SurfaceLaw::pressure_rough`]) as long as each rough pressure is surely compressive
+/// (above [`ROUGH_SAFETY`] times its estimate); from the first that is not, every sample
+/// is a scan pressure. Where a sample is tensile the refinement looks only at tensile
+/// local minima, whose neighbours and brackets are the same as with scan pressures
+/// throughout, so the pull-out is the same to the bit; where none is, the rough samples
+/// are evaluated again as scan pressures before the refinement ranks them.
 fn scan<S: SurfaceLaw>(
     surface: &S,
     history: &S::History,
@@ -949,34 +961,66 @@ fn scan<S: SurfaceLaw>(
     grid: &[f64],
 ) -> Result<(Vec<f64>, Option<f64>), SwitchError> {
     let pressures = |ds: &[f64]| par::map(ds, |&d| surface.pressure_scan(d, history, path));
-    // a law without a bound (asked at the far end, where it is cheapest) gets one batch
-    let Some(&last) = grid.last() else {
-        return Ok((Vec::new(), None));
+    // the rough start: the samples before the first that is not surely compressive
+    let mut rough = 0;
+    let mut rough_open = true;
+    let mut sample = |ds: &[f64], rough_open: &mut bool| -> Result<Vec<f64>, SwitchError> {
+        if !*rough_open {
+            return Ok(pressures(ds)?);
+        }
+        let estimates = par::map(ds, |&d| surface.pressure_rough(d, history, path))?;
+        let sure = estimates
+            .iter()
+            .take_while(|e| e.is_some_and(|e| e.value > ROUGH_SAFETY * e.error && e.value > 0.0))
+            .count();
+        rough += sure;
+        let mut ys: Vec<f64> = estimates[..sure]
+            .iter()
+            .map(|e| e.map_or(f64::NAN, |e| e.value))
+            .collect();
+        if sure < ds.len() {
+            *rough_open = false;
+            ys.extend(pressures(&ds[sure..])?);
+        }
+        Ok(ys)
     };
-    if surface.tension_bound(last, history, path)?.is_none() {
-        return Ok((pressures(grid)?, None));
-    }
-    let mut ys: Vec<f64> = Vec::with_capacity(grid.len());
-    while ys.len() < grid.len() {
-        let start = ys.len();
-        let batch = if start == 0 {
-            SCAN_FIRST_BATCH
-        } else {
-            SCAN_BATCH
+    let (mut ys, cut) = 'scan: {
+        // a law without a bound (asked at the far end, where it is cheapest) gets one batch
+        let Some(&last) = grid.last() else {
+            return Ok((Vec::new(), None));
         };
-        let end = (start + batch).min(grid.len());
-        ys.extend(pressures(&grid[start..end])?);
-        let n = ys.len();
-        let least = ys.iter().copied().fold(f64::INFINITY, f64::min);
-        if n < grid.len() && least < 0.0 && ys[n - 1] >= ys[n - 2] {
-            if let Some(b) = surface.tension_bound(grid[n], history, path)? {
-                if b < SCAN_STOP * -least {
-                    return Ok((ys, Some(b)));
+        if surface.tension_bound(last, history, path)?.is_none() {
+            break 'scan (sample(grid, &mut rough_open)?, None);
+        }
+        let mut ys: Vec<f64> = Vec::with_capacity(grid.len());
+        while ys.len() < grid.len() {
+            let start = ys.len();
+            let batch = if start == 0 {
+                SCAN_FIRST_BATCH
+            } else {
+                SCAN_BATCH
+            };
+            let end = (start + batch).min(grid.len());
+            ys.extend(sample(&grid[start..end], &mut rough_open)?);
+            let n = ys.len();
+            let least = ys.iter().copied().fold(f64::INFINITY, f64::min);
+            if n < grid.len() && least < 0.0 && ys[n - 1] >= ys[n - 2] {
+                if let Some(b) = surface.tension_bound(grid[n], history, path)? {
+                    if b < SCAN_STOP * -least {
+                        break 'scan (ys, Some(b));
+                    }
                 }
             }
         }
+        (ys, None)
+    };
+    // nothing tensile: the refinement ranks compressive local minima, which need the
+    // scan pressures of the rough start too
+    if rough > 0 && !ys.iter().any(|&y| y < 0.0) {
+        let exact = pressures(&grid[..rough])?;
+        ys[..rough].copy_from_slice(&exact);
     }
-    Ok((ys, None))
+    Ok((ys, cut))
 }
 
 /// Where the closed switch rests after an impact under a hold pressure.

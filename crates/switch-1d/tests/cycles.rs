@@ -3,7 +3,7 @@
 use asperity_plastic::{Elastic, ElastoPlasticAsperity, EtsionKadin, YieldModulus};
 use contact_core::{paper, AdhesionLaw, Material, Pair, Path, PlasticityLaw, SurfaceLaw};
 use gw_surface::{GreenwoodWilliamson, GwHistory, Quadrature, Roughness};
-use maugis_kim::{DugdaleParams, Jkr, JkrParams, MaugisKim};
+use maugis_kim::{DugdaleParams, Hertz, Jkr, JkrParams, MaugisKim};
 use switch_1d::{
     end_of_impact, eq17_residual, run_cycles, unload, CycleOptions, Impact, ImpactFilm, Precision,
 };
@@ -290,6 +290,10 @@ struct Recorder<'a, S> {
     /// Forward the inner surface's approach work above the deepest point and its virgin
     /// work below (else neither).
     work: bool,
+    /// Forward the inner surface's rough pressure (else none).
+    rough: bool,
+    /// Rough pressures asked for.
+    roughs: std::sync::atomic::AtomicUsize,
 }
 
 impl<'a, S: SurfaceLaw> Recorder<'a, S> {
@@ -302,6 +306,17 @@ impl<'a, S: SurfaceLaw> Recorder<'a, S> {
             bound: false,
             scans: Default::default(),
             work: false,
+            rough: false,
+            roughs: Default::default(),
+        }
+    }
+
+    /// The plain surface with its tension bound, counting scan and rough pressures, with
+    /// its rough pressure or without.
+    fn roughly(inner: &'a S, rough: bool) -> Self {
+        Self {
+            rough,
+            ..Self::scans(inner, true)
         }
     }
 
@@ -377,6 +392,19 @@ impl<S: SurfaceLaw> SurfaceLaw for Recorder<'_, S> {
         self.scans
             .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         self.inner.pressure_scan(d, history, path)
+    }
+    fn pressure_rough(
+        &self,
+        d: f64,
+        history: &S::History,
+        path: Path,
+    ) -> Result<Option<contact_core::Estimate>, contact_core::LawError> {
+        if !self.rough {
+            return Ok(None);
+        }
+        self.roughs
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        self.inner.pressure_rough(d, history, path)
     }
     fn tension_bound(
         &self,
@@ -538,6 +566,65 @@ fn the_pull_out_scan_stops_early_only_where_the_bound_allows() {
     }
     // the bound ends most scans early (the point of it)
     assert!(stopped >= 4, "only {stopped} of 6 scans ended early");
+}
+
+/// The compressive start of the pull-out scan evaluated roughly: the same unloading to
+/// the bit (pull-out, its separation and error estimate) as with scan pressures
+/// throughout, with most of the compressive samples rough, for adhesive surfaces whose
+/// well lies at different depths (both readings of eq 1, Maugis-Kim and JKR, a shallow and
+/// a deep impact) and for a surface without adhesion (Hertz: nothing tensile, so the rough
+/// samples are evaluated again before the refinement ranks them).
+#[test]
+fn the_rough_start_of_the_pull_out_scan_leaves_the_pull_out_as_it_was() {
+    let jkr = Jkr::new(JkrParams {
+        k: pair().k(),
+        work_of_adhesion: paper::WORK_OF_ADHESION,
+    })
+    .unwrap();
+    let ek = || EtsionKadin::new(&pair(), YieldModulus::AsPrinted).unwrap();
+    fn both<S: SurfaceLaw<History = GwHistory>>(gw: &S, d_e: f64, adhesive: bool, name: &str) {
+        let hist = gw.load(&gw.virgin(), d_e);
+        let run = |rough| {
+            let s = Recorder::roughly(gw, rough);
+            let u = unload(&s, &hist, d_e, 0, Precision::default()).unwrap();
+            (u, s.scans.into_inner(), s.roughs.into_inner())
+        };
+        let ((with, scans_with, roughs), (without, scans_without, none)) = (run(true), run(false));
+        assert_eq!(with, without, "{name} at {d_e:e}");
+        assert_eq!(none, 0);
+        if adhesive {
+            assert!(with.pull_out_pressure > 0.0, "{name}: no pull-out");
+            // most compressive samples are rough ones, which replace scan pressures (a
+            // batch's rough samples from its first unsure one on are evaluated again)
+            assert!(
+                scans_with + 10 <= scans_without && scans_with + roughs >= scans_without,
+                "{name} at {d_e:e}: {scans_with} scan and {roughs} rough pressures against {scans_without}"
+            );
+        } else {
+            assert_eq!(with.pull_out_pressure, 0.0, "{name}");
+        }
+    }
+    for d_e in [0.3 * SIGMA, -SIGMA] {
+        both(
+            &plastic(YieldModulus::AsPrinted),
+            d_e,
+            true,
+            "maugis_kim as printed",
+        );
+        both(
+            &plastic(YieldModulus::Composite),
+            d_e,
+            true,
+            "maugis_kim composite",
+        );
+        both(&surface(ek(), jkr, SIGMA), d_e, true, "jkr");
+        both(
+            &surface(ek(), Hertz::new(pair().k()).unwrap(), SIGMA),
+            d_e,
+            false,
+            "hertz",
+        );
+    }
 }
 
 /// Unloading with and without the tension bound: the two pull-outs, the separation of the
