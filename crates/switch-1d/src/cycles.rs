@@ -427,6 +427,17 @@ const ABOVE_DEEPEST_SPACING: f64 = 0.5;
 /// The first of them, in sigma_s above D; the next ones twice as far, up to the largest
 /// spacing.
 const ABOVE_DEEPEST_NEAR: f64 = 1e-4;
+/// Within this many sigma_s above D the film term is bounded interval by interval, by the
+/// larger of its ends' evaluated pressures with their estimates (and [`NEAR_FILM_MARGIN`]):
+/// after a nearly accommodated impact E_I - W(D) - film(p(D)) is a few 1e-5 J/m^2 on the
+/// paper's switch, less than what the pressure bound P (the reload's rise above D) adds
+/// to the film term, and the compressive work pays for that only about 4e-4 sigma_s up.
+const NEAR_FILM_SPAN: f64 = 1e-3;
+/// Headroom on the larger end's pressure within [`NEAR_FILM_SPAN`]: p is smooth there
+/// (the nearest kinks of p_L lie a few hundredths of sigma_s above D) and its rise over an
+/// interval of at most 1e-3 sigma_s beyond its ends is of the order of its relative change
+/// squared, about 1e-7.
+const NEAR_FILM_MARGIN: f64 = 1e-6;
 
 /// The start of eq 17's search at the deepest separation D of the history, when the
 /// surface knows the approach above D ([`SurfaceLaw::above_deepest`]: the work W(D),
@@ -464,9 +475,7 @@ fn below_deepest<S: SurfaceLaw>(
     // looked here)
     let (energy, film) = (balance.energy, balance.film);
     let at_d = surface.pressure_estimate(d, history, Path::Approach)?;
-    if !(at_d.value > 0.0 && above.pressure_bound.is_finite())
-        || work.value + work.error + film.energy(at_d.value + at_d.error) >= energy
-    {
+    if !(at_d.value > 0.0 && above.pressure_bound.is_finite()) {
         return Ok(None);
     }
     // above D, on scan pressures at offsets from D growing geometrically, then evenly up to
@@ -474,6 +483,9 @@ fn below_deepest<S: SurfaceLaw>(
     // W(D) + its estimate - C_k + T_k+1, the compressive work from D counted at each
     // interval's smaller end (less the scan's error) and the tensile work at its larger
     // end, and the film term at most film(P), P the surface's bound on the pressure
+    // (within NEAR_FILM_SPAN of D, where the compressive work has not yet paid for that
+    // bound's slack, the samples are evaluated pressures and the film term is bounded on
+    // each interval by its larger end, with their estimates)
     let film_high = film.energy(above.pressure_bound.max(at_d.value + at_d.error));
     let mut xs = Vec::new();
     let mut offset = ABOVE_DEEPEST_NEAR * sigma;
@@ -482,21 +494,37 @@ fn below_deepest<S: SurfaceLaw>(
         offset += offset.min(ABOVE_DEEPEST_SPACING * sigma);
     }
     xs.push(top);
-    let ps = par::map(&xs, |&x| surface.pressure_scan(x, history, Path::Approach))?;
-    let base = work.value + work.error + film_high - energy;
+    let near = |x: f64| x - d <= NEAR_FILM_SPAN * sigma;
+    let ps = par::map(&xs, |&x| {
+        Ok::<_, SwitchError>(if near(x) {
+            surface.pressure_estimate(x, history, Path::Approach)?
+        } else {
+            Estimate {
+                value: surface.pressure_scan(x, history, Path::Approach)?,
+                error: f64::NAN,
+            }
+        })
+    })?;
+    let base = work.value + work.error - energy;
     // interval k runs from starts[k] (D, then the samples); open[k]: its bound is below E_I
     let (mut pushed, mut pulled) = (0.0, 0.0);
-    let mut prev = (d, at_d.value);
+    let mut prev = (d, at_d);
     let mut open = Vec::with_capacity(xs.len());
     let mut starts = Vec::with_capacity(xs.len());
-    for (&x, &p) in xs.iter().zip(&ps) {
-        let dx = x - prev.0;
+    for (&x, &e) in xs.iter().zip(&ps) {
+        let (dx, p, q) = (x - prev.0, e.value, prev.1.value);
         let credit = pushed;
-        pushed += dx * prev.1.max(0.0).min(p.max(0.0)) * (1.0 - SCAN_MARGIN);
-        pulled += dx * (-prev.1).max(0.0).max((-p).max(0.0)) * (1.0 + SCAN_MARGIN);
+        pushed += dx * q.max(0.0).min(p.max(0.0)) * (1.0 - SCAN_MARGIN);
+        pulled += dx * (-q).max(0.0).max((-p).max(0.0)) * (1.0 + SCAN_MARGIN);
+        let film_k = if near(x) {
+            let larger = (p + e.error).max(q + prev.1.error) * (1.0 + NEAR_FILM_MARGIN);
+            film.energy(larger.min(above.pressure_bound).max(0.0))
+        } else {
+            film_high
+        };
         starts.push(prev.0);
-        open.push(base - credit + pulled < 0.0);
-        prev = (x, p);
+        open.push(base + film_k - credit + pulled < 0.0);
+        prev = (x, e);
     }
     // the lowest start from which every interval up is open
     let Some(k) = (0..open.len()).rev().take_while(|&k| open[k]).last() else {
@@ -564,8 +592,14 @@ fn tabulated<S: SurfaceLaw>(
             v.work,
         )))
     };
+    /// Where Newton starts: the tabulated root in a bracket, or (when the first step's
+    /// sample closes) the linearized root below hi, with the step's width.
+    enum Start {
+        Bracket(Sample, Sample),
+        Near { x: f64, width: f64 },
+    }
     let mut upper = (hi, f64::NEG_INFINITY);
-    let bracket = loop {
+    let start = loop {
         let lo = (upper.0 - step).max(floor);
         let Some((g, p, v)) = at(lo)? else {
             return Ok(None);
@@ -576,16 +610,21 @@ fn tabulated<S: SurfaceLaw>(
         }
         if p > 0.0 && g >= 0.0 {
             if upper.0 == hi {
-                // the first sample closes: is the balance open at hi itself?
-                let Some((g_hi, _, _)) = at(hi - 1e-9 * step)? else {
-                    return Ok(None);
-                };
-                if g_hi >= 0.0 {
+                // the first sample closes: is the balance open at hi itself? Just below a
+                // deepest point the last impact nearly closed at, the tabulated pressure
+                // (to 1e-3) cannot tell; the evaluated one can, and G falls at about
+                // -p(hi) from there, which gives Newton its start
+                let e = surface.pressure_estimate(hi, history, Path::Approach)?;
+                let g_hi = work.value + film.energy(e.value) - energy;
+                if !(e.value > 0.0) || g_hi >= 0.0 {
                     return Ok(None);
                 }
-                upper.1 = g_hi;
+                break Start::Near {
+                    x: (hi + g_hi / e.value).clamp(lo, hi),
+                    width: hi - lo,
+                };
             }
-            break (
+            break Start::Bracket(
                 Sample { x: lo, f: g },
                 Sample {
                     x: upper.0,
@@ -610,30 +649,47 @@ fn tabulated<S: SurfaceLaw>(
             .min(64.0 * sigma);
         upper = (lo, g);
     };
-    let g_of = |x: f64| -> Result<f64, SwitchError> { Ok(at(x)?.map_or(f64::NAN, |(g, _, _)| g)) };
-    let root = brent_from(
-        "eq 17 on the tabulated virgin loading",
-        g_of,
-        bracket.0,
-        bracket.1,
-        // to a thousandth of sigma: Newton with the evaluated pressure goes on from there
-        Tolerance {
-            rel: 0.0,
-            abs: (1e-3 * sigma).max(0.01 * tol_d),
-            max_iter: 200,
-        },
-    );
-    // a table the surface could not give inside the bracket: the search with panels decides
-    let Ok(mut x) = root else {
-        return Ok(None);
+    let (mut x, width) = match start {
+        Start::Near { x, width } => (x, width),
+        Start::Bracket(lo, hi) => {
+            let g_of =
+                |x: f64| -> Result<f64, SwitchError> { Ok(at(x)?.map_or(f64::NAN, |(g, _, _)| g)) };
+            let root = brent_from(
+                "eq 17 on the tabulated virgin loading",
+                g_of,
+                lo,
+                hi,
+                // to a thousandth of sigma: Newton with the evaluated pressure goes on from there
+                Tolerance {
+                    rel: 0.0,
+                    abs: (1e-3 * sigma).max(0.01 * tol_d),
+                    max_iter: 200,
+                },
+            );
+            // a table the surface could not give inside the bracket: the search with
+            // panels decides
+            let Ok(x) = root else {
+                return Ok(None);
+            };
+            (x, hi.x - lo.x)
+        }
     };
-    // dp/dx of the tabulated pressure, for the film term's share of dG/dx
-    let h = (1e-3 * (bracket.1.x - bracket.0.x)).max(16.0 * f64::EPSILON * x.abs());
-    let (p1, p2) = match (at(x - h)?, at(x + h)?) {
+    // the tables answer below hi only
+    let below_hi = hi.next_down();
+    x = x.min(below_hi);
+    // dp/dx of the tabulated pressure, for the film term's share of dG/dx (one-sided where
+    // x lies within h of hi)
+    let h = (1e-3 * width).max(16.0 * f64::EPSILON * x.abs());
+    let (xa, xb) = if x + h < hi {
+        (x - h, x + h)
+    } else {
+        (x - 2.0 * h, x)
+    };
+    let (p1, p2) = match (at(xa)?, at(xb)?) {
         (Some(a), Some(b)) => (a.1, b.1),
         _ => return Ok(None),
     };
-    let dp = (p2 - p1) / (2.0 * h);
+    let dp = (p2 - p1) / (xb - xa);
     let mut correction = f64::INFINITY;
     let (mut p_x, mut slope, mut errors) = (0.0, -1.0, (0.0, 0.0));
     for _ in 0..6 {
@@ -652,7 +708,7 @@ fn tabulated<S: SurfaceLaw>(
             pressures_error + film.thickness / film.youngs_modulus * p_x.abs() * e.error,
         );
         correction = -g / slope;
-        x += correction;
+        x = (x + correction).min(below_hi);
         if correction.abs() <= 0.1 * tol_d {
             break;
         }
