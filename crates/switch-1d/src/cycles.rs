@@ -421,6 +421,8 @@ struct Start {
 const START_DEPTHS: f64 = 2.0;
 /// Relative headroom on a scan pressure (its tolerance is 1e-3).
 const SCAN_MARGIN: f64 = 1e-2;
+/// A rough pressure's estimate times this bounds its error.
+const ROUGH_ERROR_SAFETY: f64 = 2.0;
 /// The largest spacing of the scan pressures that check the approach above D, in
 /// sigma_s.
 const ABOVE_DEEPEST_SPACING: f64 = 0.5;
@@ -495,36 +497,44 @@ fn below_deepest<S: SurfaceLaw>(
     }
     xs.push(top);
     let near = |x: f64| x - d <= NEAR_FILM_SPAN * sigma;
+    // each sample as bounds (lower, upper) on the pressure: evaluated within the near
+    // span, else rough where the surface has a rough pressure (its estimate doubled), else
+    // its scan pressure (to SCAN_MARGIN)
+    let bounds = |e: Estimate, k: f64| (e.value - k * e.error, e.value + k * e.error);
     let ps = par::map(&xs, |&x| {
-        Ok::<_, SwitchError>(if near(x) {
-            surface.pressure_estimate(x, history, Path::Approach)?
-        } else {
-            Estimate {
-                value: surface.pressure_scan(x, history, Path::Approach)?,
-                error: f64::NAN,
-            }
-        })
+        if near(x) {
+            return Ok::<_, SwitchError>(bounds(
+                surface.pressure_estimate(x, history, Path::Approach)?,
+                1.0,
+            ));
+        }
+        if let Some(e) = surface.pressure_rough(x, history, Path::Approach)? {
+            return Ok(bounds(e, ROUGH_ERROR_SAFETY));
+        }
+        let p = surface.pressure_scan(x, history, Path::Approach)?;
+        Ok((p - SCAN_MARGIN * p.abs(), p + SCAN_MARGIN * p.abs()))
     })?;
     let base = work.value + work.error - energy;
     // interval k runs from starts[k] (D, then the samples); open[k]: its bound is below E_I
     let (mut pushed, mut pulled) = (0.0, 0.0);
-    let mut prev = (d, at_d);
+    let mut prev = (d, bounds(at_d, 1.0));
     let mut open = Vec::with_capacity(xs.len());
     let mut starts = Vec::with_capacity(xs.len());
-    for (&x, &e) in xs.iter().zip(&ps) {
-        let (dx, p, q) = (x - prev.0, e.value, prev.1.value);
+    for (&x, &(lower, upper)) in xs.iter().zip(&ps) {
+        let (dx, (prev_lower, prev_upper)) = (x - prev.0, prev.1);
         let credit = pushed;
-        pushed += dx * q.max(0.0).min(p.max(0.0)) * (1.0 - SCAN_MARGIN);
-        pulled += dx * (-q).max(0.0).max((-p).max(0.0)) * (1.0 + SCAN_MARGIN);
+        let least = lower.min(prev_lower);
+        pushed += dx * least.max(0.0);
+        pulled += dx * (-least).max(0.0);
         let film_k = if near(x) {
-            let larger = (p + e.error).max(q + prev.1.error) * (1.0 + NEAR_FILM_MARGIN);
+            let larger = upper.max(prev_upper) * (1.0 + NEAR_FILM_MARGIN);
             film.energy(larger.min(above.pressure_bound).max(0.0))
         } else {
             film_high
         };
         starts.push(prev.0);
         open.push(base + film_k - credit + pulled < 0.0);
-        prev = (x, e);
+        prev = (x, (lower, upper));
     }
     // the lowest start from which every interval up is open
     let Some(k) = (0..open.len()).rev().take_while(|&k| open[k]).last() else {
