@@ -920,6 +920,101 @@ fn an_impact_that_stops_above_the_deepest_point_is_searched_from_the_top() {
     assert_eq!(with.error, without.error);
 }
 
+/// A fixed number of cycles runs as a pipeline (eq 17 in turn, each unloading beside the
+/// next impacts): the same cycles to the bit as one cycle after the other (the run that
+/// stops at accommodation, with a tolerance nothing meets), on the paper's surface (10
+/// cycles, both readings of eq 1) and on a soft film whose later impacts stop above the
+/// deepest point, so that the history stops changing and cycles repeat (40 cycles, more
+/// than one window).
+#[test]
+fn a_fixed_number_of_cycles_found_ahead_is_the_cycle_by_cycle_run() {
+    fn both<S: SurfaceLaw>(gw: &S, impact: Impact, cycles: usize, name: &str) -> usize
+    where
+        S::History: std::fmt::Debug,
+    {
+        let options = CycleOptions {
+            cycles,
+            precision: Precision {
+                d_e: 1e-6,
+                pull_out: 1e-6,
+            },
+            ..quick(cycles)
+        };
+        let ahead = run_cycles(gw, gw.virgin(), impact, options, &mut |_| {}).unwrap();
+        let mut seen = 0;
+        let one_by_one = run_cycles(
+            gw,
+            gw.virgin(),
+            impact,
+            CycleOptions {
+                until_accommodated: true,
+                accommodation_tolerance: 1e-300,
+                ..options
+            },
+            &mut |_| seen += 1,
+        )
+        .unwrap();
+        // one by one, the run stops only where the history stopped changing (every later
+        // cycle repeats the last)
+        let n = one_by_one.cycles.len();
+        assert_eq!(seen, n);
+        assert!(n >= 5, "{name}: {n} cycles one by one");
+        assert_eq!(ahead.cycles.len(), cycles, "{name}");
+        assert_eq!(ahead.cycles[..n], one_by_one.cycles[..], "{name}");
+        let last = &one_by_one.cycles[n - 1];
+        for c in &ahead.cycles[n..] {
+            assert_eq!(
+                (c.end, &c.history, &c.unloading),
+                (last.end, &last.history, &last.unloading),
+                "{name} cycle {}",
+                c.cycle
+            );
+        }
+        // cycles that repeat the one before
+        ahead
+            .cycles
+            .windows(2)
+            .filter(|w| w[0].history == w[1].history)
+            .count()
+    }
+    for modulus in [YieldModulus::AsPrinted, YieldModulus::Composite] {
+        both(&plastic(modulus), impact(0.5), 10, "paper");
+    }
+    let gold = Material::new(contact_core::MaterialProps {
+        youngs_modulus: 90e9,
+        poisson_ratio: 0.42,
+        yield_stress: 320e6,
+    })
+    .unwrap();
+    let pair = Pair::new(gold, Some(gold), 2e-6).unwrap();
+    let film = GreenwoodWilliamson::new(
+        ElastoPlasticAsperity::new(
+            EtsionKadin::new(&pair, YieldModulus::Composite).unwrap(),
+            MaugisKim::new(DugdaleParams::for_pair(&pair, 0.08, 0.2e-9)).unwrap(),
+        ),
+        Roughness {
+            sigma_s: 22e-9,
+            asperity_density: 3e12,
+        },
+        Quadrature {
+            rel_tol: 1e-7,
+            ..Quadrature::default()
+        },
+    )
+    .unwrap();
+    let soft = Impact {
+        energy: 5.85,
+        film: ImpactFilm {
+            thickness: 0.6e-6,
+            youngs_modulus: 90e9,
+        },
+        contact_area_fraction: 1.0,
+        restoring_pressure: 16_880.0,
+    };
+    let repeats = both(&film, soft, 40, "soft film");
+    assert!(repeats > 0, "no cycle repeated");
+}
+
 /// A soft gold-like film (the Pt-Au bridge of the 2026-11-24 user report: E 90 GPa,
 /// nu 0.42, S_Y 320 MPa, R 2 um, w 0.08 J/m^2, z0 0.2 nm, sigma_s 22 nm, composite
 /// yield modulus, eq 12 as printed) impacted again and again: its reload curves end above
