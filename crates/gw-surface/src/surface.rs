@@ -116,6 +116,21 @@ pub struct GreenwoodWilliamson<M> {
 /// reference the modes are measured against does not share the tables' numerics).
 const FINEST_TABLE: f64 = 1e-13;
 
+/// The tolerance of an integral over the heights of tabulated asperity works (the approach
+/// work above or below the deepest point) asked to `abs` (J/m^2) or `rel_of_abs`: half of
+/// it, the tables' interpolation error taking the other half, per unit asperity density
+/// `n` (the integral runs over the height distribution).
+fn table_integral_tolerance(abs: f64, rel_of_abs: f64, n: f64) -> QuadTolerance {
+    QuadTolerance {
+        rel: 0.0,
+        rel_of_abs: 0.5 * rel_of_abs,
+        abs: 0.5 * abs / n,
+        max_width: START_PANEL_SIGMAS,
+        max_panels: 20_000,
+        noise: NOISE,
+    }
+}
+
 /// Relative tolerance of [`SurfaceLaw::pressure_scan`].
 const SCAN_TOLERANCE: f64 = 1e-3;
 /// The relative tolerance of the rough pressure ([`SurfaceLaw::pressure_rough`]).
@@ -739,14 +754,7 @@ impl<M: AsperityModel + Sync> GreenwoodWilliamson<M> {
         }
         us.sort_by(f64::total_cmp);
         us.dedup();
-        let tol = QuadTolerance {
-            rel: 0.0,
-            rel_of_abs: 0.5 * rel_of_abs,
-            abs: 0.5 * abs / n,
-            max_width: START_PANEL_SIGMAS,
-            max_panels: 20_000,
-            noise: NOISE,
-        };
+        let tol = table_integral_tolerance(abs, rel_of_abs, n);
         let w = integrate(
             "virgin approach work",
             |u: f64| {
@@ -827,14 +835,7 @@ impl<M: AsperityModel + Sync> GreenwoodWilliamson<M> {
         );
         us.sort_by(f64::total_cmp);
         us.dedup();
-        let outer = QuadTolerance {
-            rel: 0.0,
-            rel_of_abs: 0.5 * rel_of_abs,
-            abs: 0.5 * abs / n,
-            max_width: START_PANEL_SIGMAS,
-            max_panels: 20_000,
-            noise: NOISE,
-        };
+        let outer = table_integral_tolerance(abs, rel_of_abs, n);
         let w = integrate(
             "approach work to the deepest separation",
             |u: f64| Ok::<_, GwError>(table.eval(sigma * u - deep) * self.normal.pdf(u)),

@@ -5,7 +5,8 @@ use asperity_plastic::{
 };
 use contact_core::numeric::GaussLegendre;
 use contact_core::{
-    paper, AdhesionLaw, AsperityModel, Jumps, LawError, Material, Pair, Path, SurfaceLaw,
+    paper, AdhesionLaw, AsperityModel, Jumps, LawError, Material, Pair, Path, PlasticityLaw,
+    SurfaceLaw,
 };
 use gw_surface::{GreenwoodWilliamson, GwHistory, HeightTable, Quadrature, Roughness};
 use maugis_kim::{Dmt, DugdaleParams, Hertz, MaugisKim};
@@ -608,30 +609,20 @@ fn the_approach_work_above_the_deepest_point_is_the_integral_of_the_approach_pre
         // and jumps at Kogut-Etsion's omega = 6: an undeclared jump inside each R made
         // W(D) 1e-6 wrong against 1e-12 estimates (the 200-scene accuracy run's
         // DMT / Kogut-Etsion / bounded scenes)
+        fn bounded<P: PlasticityLaw, A: AdhesionLaw>(
+            p: P,
+            a: A,
+        ) -> GreenwoodWilliamson<ElastoPlasticAsperity<P, A>> {
+            let asperity = ElastoPlasticAsperity::new(p, a).with_reload(Reload::Bounded);
+            GreenwoodWilliamson::new(asperity, ROUGH, q(1e-12)).unwrap()
+        }
         let ke = || KogutEtsion::new(&pair, modulus).unwrap();
-        let ke_dmt = GreenwoodWilliamson::new(
-            ElastoPlasticAsperity::new(ke(), Dmt::new(dugdale(&pair)).unwrap())
-                .with_reload(Reload::Bounded),
-            ROUGH,
-            q(1e-12),
-        )
-        .unwrap();
+        let mk = || MaugisKim::new(dugdale(&pair)).unwrap();
+        let ke_dmt = bounded(ke(), Dmt::new(dugdale(&pair)).unwrap());
         check("dmt, kogut_etsion, bounded", &|d| both(&ke_dmt, d));
-        let ke_mk = GreenwoodWilliamson::new(
-            ElastoPlasticAsperity::new(ke(), MaugisKim::new(dugdale(&pair)).unwrap())
-                .with_reload(Reload::Bounded),
-            ROUGH,
-            q(1e-12),
-        )
-        .unwrap();
+        let ke_mk = bounded(ke(), mk());
         check("maugis_kim, kogut_etsion, bounded", &|d| both(&ke_mk, d));
-        let ek_mk = GreenwoodWilliamson::new(
-            ElastoPlasticAsperity::new(ek(), MaugisKim::new(dugdale(&pair)).unwrap())
-                .with_reload(Reload::Bounded),
-            ROUGH,
-            q(1e-12),
-        )
-        .unwrap();
+        let ek_mk = bounded(ek(), mk());
         check("maugis_kim, etsion_kadin, bounded", &|d| both(&ek_mk, d));
     }
     let hertz = GreenwoodWilliamson::new(
