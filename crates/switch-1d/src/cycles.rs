@@ -441,22 +441,26 @@ const NEAR_FILM_SPAN: f64 = 1e-3;
 /// squared, about 1e-7.
 const NEAR_FILM_MARGIN: f64 = 1e-6;
 
-/// The start of eq 17's search at the deepest separation D of the history, when the
-/// surface knows the approach above D ([`SurfaceLaw::above_deepest`]: the work W(D),
-/// integrated over its asperities, and a bound P on the pressure above D) and the balance
-/// G(x) = W(x) + film(p(x)) - E_I stays open above D, as far as these bounds show:
-/// - W(D) + its estimate + film(max(P, p(D) + its estimate)) < E_I, with p(D) > 0: the
-///   film term is below that everywhere above D;
-/// - and the work above D never exceeds W(D): W(x) = W(D) - integral from D to x of p,
-///   the integral checked to stay positive on scan pressures at offsets from D growing
-///   geometrically from ABOVE_DEEPEST_NEAR sigma_s up to steps of ABOVE_DEEPEST_SPACING
-///   sigma_s, its compressive part counted at each interval's smaller end and its tensile
-///   part at the larger one (the approach pressure is compressive from D up to where the
-///   contact edge's adhesion takes over, and W(top) = 0 < W(D)).
+/// The start of eq 17's search at or above the deepest separation D of the history, when
+/// the surface knows the approach above D ([`SurfaceLaw::above_deepest`]: the work W(D),
+/// integrated over its asperities, and a bound P on the pressure above D), with p(D) > 0:
+/// the lowest of D and the samples above it from which the balance
+/// G(x) = W(x) + film(p(x)) - E_I stays open all the way up, as far as these bounds show
+/// on each interval between samples (at offsets from D growing geometrically from
+/// ABOVE_DEEPEST_NEAR sigma_s up to steps of ABOVE_DEEPEST_SPACING sigma_s, each sample
+/// read as bounds on the pressure):
+/// - the work is at most W(D) + its estimate - C + T: C the compressive work from D to
+///   the interval's start and T the tensile work to its end, each interval counted at its
+///   smaller lower bound (the approach pressure is compressive from D up to where the
+///   contact edge's adhesion takes over, and W(top) = 0 < W(D));
+/// - the film term is at most film(max(P, p(D) + its estimate)), or, within
+///   NEAR_FILM_SPAN sigma_s of D, film of the larger of the interval's ends (evaluated
+///   pressures with their estimates, and NEAR_FILM_MARGIN).
 ///
-/// Otherwise None: the search starts at the first touch as before. Below D the approach
-/// pressure is the virgin one (every asperity in contact is loaded beyond its delta_max),
-/// so nothing else changes (docs/theory.md section 6.2).
+/// None where no interval up to the first touch is open: the search starts at the first
+/// touch as before. Below D the approach pressure is the virgin one (every asperity in
+/// contact is loaded beyond its delta_max), so nothing else changes (docs/theory.md
+/// section 6.2).
 fn below_deepest<S: SurfaceLaw>(
     surface: &S,
     history: &S::History,
@@ -480,14 +484,14 @@ fn below_deepest<S: SurfaceLaw>(
     if !(at_d.value > 0.0 && above.pressure_bound.is_finite()) {
         return Ok(None);
     }
-    // above D, on scan pressures at offsets from D growing geometrically, then evenly up to
-    // the first touch: on the interval from x_k to x_k+1 the work is at most
+    // above D, on samples at offsets from D growing geometrically, then evenly up to the
+    // first touch: on the interval from x_k to x_k+1 the work is at most
     // W(D) + its estimate - C_k + T_k+1, the compressive work from D counted at each
-    // interval's smaller end (less the scan's error) and the tensile work at its larger
-    // end, and the film term at most film(P), P the surface's bound on the pressure
-    // (within NEAR_FILM_SPAN of D, where the compressive work has not yet paid for that
-    // bound's slack, the samples are evaluated pressures and the film term is bounded on
-    // each interval by its larger end, with their estimates)
+    // interval's smaller lower bound and the tensile work likewise, and the film term at
+    // most film(P), P the surface's bound on the pressure (within NEAR_FILM_SPAN of D,
+    // where the compressive work has not yet paid for that bound's slack, the samples are
+    // evaluated pressures and the film term is bounded on each interval by its larger end,
+    // with their estimates)
     let film_high = film.energy(above.pressure_bound.max(at_d.value + at_d.error));
     let mut xs = Vec::new();
     let mut offset = ABOVE_DEEPEST_NEAR * sigma;
