@@ -5,7 +5,9 @@
 //!
 //! `--times FILE` also writes every run's wall time as CSV (`domain,scene,mode,seconds,
 //! outcome`; scene counts from 1 in each domain, in the generator's order), so that the
-//! scenes behind a mode's total time can be found and rerun.
+//! scenes behind a mode's total time can be found and rerun; `--scene-files DIR` writes
+//! each scene as a scene file (`mems-3.toml`, `wide-48.toml`) to rerun alone with
+//! `stiction switch --scene`, and `--no-runs` with it writes the files and runs nothing.
 
 use std::io::IsTerminal;
 use std::time::Instant;
@@ -104,6 +106,8 @@ pub fn main(args: &[&str]) -> Result<(), String> {
     let mut seed = 20261123u64;
     let mut stopping_rule = true;
     let mut times_path: Option<String> = None;
+    let mut scene_dir: Option<std::path::PathBuf> = None;
+    let mut only_scenes = false;
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match *a {
@@ -129,6 +133,15 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                         .to_string(),
                 )
             }
+            "--scene-files" => {
+                scene_dir = Some(
+                    it.next()
+                        .ok_or("--scene-files needs a directory (one scene file per scene)")?
+                        .into(),
+                )
+            }
+            // with --scene-files: write the scenes, run nothing
+            "--no-runs" => only_scenes = true,
             other => return Err(format!("unknown option {other}")),
         }
     }
@@ -160,6 +173,14 @@ pub fn main(args: &[&str]) -> Result<(), String> {
             // (a rest solve per cycle, the longest part of some reference runs) is not needed
             s.contact_states = stiction_model::spec::ContactStates::None;
             scenes += 1;
+            if let Some(dir) = &scene_dir {
+                let path = dir.join(format!("{domain:?}-{scenes}.toml").to_lowercase());
+                stiction::output::write_file(&path, scenegen::to_toml(&s.common.scene).as_bytes())
+                    .map_err(|e| e.to_string())?;
+            }
+            if only_scenes {
+                continue;
+            }
             let (reference, t_ref) = run(&s, Accuracy::Reference);
             let reference = match reference {
                 Ok(r) => {
@@ -306,6 +327,9 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                 accurate_time / total.max(1e-12),
             );
         }
+    }
+    if only_scenes {
+        return Ok(());
     }
     let body = format!(
         "{BEGIN}\nMeasured by `cargo xtask accuracy --scenes {n} --seed {seed}{}` (release build, this machine, 4 cycles, pull-out only, no contact state; errors against the reference mode; pull-out errors relative, with the floor 1e-9 K_s d0):\n{table}\n{}\n{END}",

@@ -2,7 +2,7 @@
 //! and figures with the insta snapshots in `xtask/snapshots/`.
 //! `cargo xtask tradeoff`: the speed/accuracy trade of the paper's switch, per mode.
 //! `cargo xtask docs`: the scene-key table of docs/validation.md from the key registry.
-//! `cargo xtask accuracy [--scenes N] [--seed S] [--no-stopping-rule] [--times FILE]`: each mode's error and speed-up over
+//! `cargo xtask accuracy [--scenes N] [--seed S] [--no-stopping-rule] [--times FILE] [--scene-files DIR [--no-runs]]`: each mode's error and speed-up over
 //! random scenes of the documented domains (docs/performance.md).
 //!
 //! Tolerance: snapshots store numbers rounded to 7 significant digits. A scene passes when
@@ -187,7 +187,7 @@ fn main() -> ExitCode {
         ["accuracy", rest @ ..] => return report(accuracy::main(rest)),
         ["law", rest @ ..] => return report(law::main(rest)),
         _ => {
-            eprintln!("usage: cargo xtask verify [--update] | cargo xtask tradeoff | cargo xtask accuracy [--scenes N] [--seed S] [--no-stopping-rule] [--times FILE] | cargo xtask law [--scenes N] [--seed S] [--domain mems|wide] [--held-out K] | cargo xtask docs");
+            eprintln!("usage: cargo xtask verify [--update] | cargo xtask tradeoff | cargo xtask accuracy [--scenes N] [--seed S] [--no-stopping-rule] [--times FILE] [--scene-files DIR [--no-runs]] | cargo xtask law [--scenes N] [--seed S] [--domain mems|wide] [--held-out K] | cargo xtask docs");
             return ExitCode::from(2);
         }
     };

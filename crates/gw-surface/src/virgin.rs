@@ -4,12 +4,9 @@
 //! virgin curve; docs/theory.md section 6.2).
 
 use crate::error::GwError;
-use crate::reload::{hard_ends, next_end, Piece, MAX_DEPTH, NODES};
-use contact_core::{par, AsperityHistory, AsperityModel, CoreError, Path};
+use crate::reload::{hard_ends, next_end, table_failed, Piece, MAX_BLOCK_PIECES, MAX_DEPTH, NODES};
+use contact_core::{par, AsperityHistory, AsperityModel, Path};
 use std::sync::{Arc, Mutex};
-
-/// A table of more pieces than this is a failure (the surface then goes without it).
-const MAX_PIECES: usize = 4096;
 
 /// One piece: F_v at the Lobatto points of [a, b], the Chebyshev coefficients of its
 /// antiderivative in t in [-1, 1] (times (b - a)/2, zero at a), V(a), and the error
@@ -114,6 +111,8 @@ pub(crate) struct VirginTable {
     /// The asperity's hard breaks (virgin jump-in, zero, plastic breaks), increasing.
     breaks: Vec<f64>,
     pieces: Vec<VirginPiece>,
+    /// The block after `x_max` failed (see the reload table's field of that name).
+    failed: bool,
 }
 
 impl VirginTable {
@@ -176,31 +175,33 @@ impl VirginTable {
             breaks,
             eps,
             pieces: Vec::new(),
+            failed: false,
         })
     }
 
-    fn extended<M: AsperityModel + Sync>(
-        mut self,
-        asperity: &M,
-        x_need: f64,
-    ) -> Result<Self, GwError> {
+    /// The table with every block up to one that covers `x_need`, built, or up to a
+    /// block that failed (see the reload table's `extended`).
+    fn extended<M: AsperityModel + Sync>(mut self, asperity: &M, x_need: f64) -> Self {
         let unit = 1e-3 * asperity.radius();
-        let mut blocks = Vec::new();
-        let mut last = self.x_max();
-        while last < x_need {
-            let next = next_end(last, &self.breaks, unit);
-            blocks.push((last, next));
-            self.ends.push(next);
-            last = next;
+        while !self.failed && self.x_max() < x_need {
+            let a = self.x_max();
+            let b = next_end(a, &self.breaks, unit);
+            let first = self.pieces.len();
+            let built = forces(asperity, a, b).and_then(|values| {
+                let tol = self.eps * values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                self.refine(asperity, a, b, values, tol, 0, first)
+            });
+            if let Ok(true) = built {
+                self.ends.push(b);
+            } else {
+                self.pieces.truncate(first);
+                self.failed = true;
+            }
         }
-        for (a, b) in blocks {
-            let values = forces(asperity, a, b)?;
-            let tol = self.eps * values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-            self.refine(asperity, a, b, values, tol, 0)?;
-        }
-        Ok(self)
+        self
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn refine<M: AsperityModel + Sync>(
         &mut self,
         asperity: &M,
@@ -209,13 +210,10 @@ impl VirginTable {
         values: [f64; NODES],
         tol: f64,
         depth: u32,
-    ) -> Result<(), GwError> {
-        if self.pieces.len() >= MAX_PIECES {
-            return Err(CoreError::NoConvergence {
-                what: "virgin-loading table",
-                iterations: MAX_PIECES,
-            }
-            .into());
+        first: usize,
+    ) -> Result<bool, GwError> {
+        if self.pieces.len() - first >= MAX_BLOCK_PIECES {
+            return Ok(false);
         }
         let error = Piece::tail(&values);
         if error <= tol || depth >= MAX_DEPTH {
@@ -227,7 +225,7 @@ impl VirginTable {
             });
             self.pieces
                 .push(VirginPiece::new(a, b, values, error, at_a));
-            return Ok(());
+            return Ok(true);
         }
         let m = if a > 0.0 && b > 4.0 * a {
             (a * b).sqrt()
@@ -235,8 +233,8 @@ impl VirginTable {
             0.5 * (a + b)
         };
         let (left, right) = par::join(|| forces(asperity, a, m), || forces(asperity, m, b));
-        self.refine(asperity, a, m, left?, tol, depth + 1)?;
-        self.refine(asperity, m, b, right?, tol, depth + 1)
+        Ok(self.refine(asperity, a, m, left?, tol, depth + 1, first)?
+            && self.refine(asperity, m, b, right?, tol, depth + 1, first)?)
     }
 }
 
@@ -284,19 +282,24 @@ impl VirginTables {
     ) -> Result<Arc<VirginTable>, GwError> {
         let eps = 10f64.powf(eps.log10().floor());
         let found = self.lock().iter().find(|t| t.eps == eps).cloned();
-        if let Some(t) = &found {
-            if t.x_max() >= x_need {
-                return Ok(t.clone());
+        let table = match found {
+            Some(t) if t.x_max() >= x_need || t.failed => t,
+            found => {
+                let base = match found {
+                    Some(t) => (*t).clone(),
+                    None => VirginTable::start(asperity, eps)?,
+                };
+                let table = Arc::new(base.extended(asperity, x_need));
+                let mut tables = self.lock();
+                tables.retain(|t| t.eps != table.eps);
+                tables.push(table.clone());
+                table
             }
-        }
-        let base = match found {
-            Some(t) => (*t).clone(),
-            None => VirginTable::start(asperity, eps)?,
         };
-        let table = Arc::new(base.extended(asperity, x_need)?);
-        let mut tables = self.lock();
-        tables.retain(|t| t.eps != table.eps);
-        tables.push(table.clone());
-        Ok(table)
+        if table.x_max() >= x_need {
+            Ok(table)
+        } else {
+            Err(table_failed("virgin-loading table"))
+        }
     }
 }

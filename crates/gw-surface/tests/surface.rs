@@ -747,3 +747,74 @@ fn the_virgin_work_from_the_tables_is_the_integral_of_the_approach_pressure() {
     .unwrap();
     check("hertz", &hertz);
 }
+
+/// Hertz's force with a deterministic relative noise of 1e-8 (a hash of the interference's
+/// bits), counting its calls: no reload-work table to 1e-11 can be built on it.
+struct NoisyHertz(Hertz);
+
+static NOISY_CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+impl AdhesionLaw for NoisyHertz {
+    fn force(&self, radius: f64, delta: f64, path: Path) -> Result<f64, LawError> {
+        NOISY_CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let h = delta.to_bits().wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 11;
+        let u = h as f64 / (1u64 << 53) as f64 - 0.5;
+        Ok(self.0.force(radius, delta, path)? * (1.0 + 2e-8 * u))
+    }
+    fn jumps(&self, radius: f64) -> Result<Jumps, LawError> {
+        self.0.jumps(radius)
+    }
+}
+
+#[test]
+fn a_reload_table_that_cannot_converge_fails_at_once_and_for_good() {
+    use std::sync::atomic::Ordering::Relaxed;
+    let pair = ru_pair();
+    let hertz = Hertz::new(pair.k()).unwrap();
+    let calls = |f: &dyn Fn()| {
+        let before = NOISY_CALLS.load(Relaxed);
+        f();
+        NOISY_CALLS.load(Relaxed) - before
+    };
+    let deep = -SIGMA;
+    // the same asperity without the noise is tabulated
+    let smooth = GreenwoodWilliamson::new(
+        ElastoPlasticAsperity::new(Elastic::new(R).unwrap(), hertz),
+        ROUGH,
+        q(1e-10),
+    )
+    .unwrap();
+    let hist = smooth.load(&smooth.virgin(), deep);
+    assert!(smooth.above_deepest(&hist, 0.0, 1e-10).unwrap().is_some());
+    let noisy = GreenwoodWilliamson::new(
+        ElastoPlasticAsperity::new(Elastic::new(R).unwrap(), NoisyHertz(hertz)),
+        ROUGH,
+        q(1e-10),
+    )
+    .unwrap();
+    let hist = noisy.load(&noisy.virgin(), deep);
+    // a table of 1e-11 cannot be built on values noisy to 1e-8: eq 17 is told to evaluate
+    // pressures (None), neither an error nor a table that claims what it is not
+    let first = calls(&|| {
+        assert!(noisy.above_deepest(&hist, 0.0, 1e-10).unwrap().is_none());
+    });
+    // The failing block stops at its cap of 128 pieces (gw_surface's MAX_BLOCK_PIECES): at
+    // most 2 x 128 + 1 sets of 17 Lobatto values, 4369 reload integrals, each of which
+    // stagnates on the noise after about 1900 forces here; the blocks below converged in a
+    // few pieces. Twice that bounds it: 17.5 M forces. Before, the table ran to 4096
+    // pieces (about 139,000 integrals, some 260 M forces), and again on every call.
+    assert!(
+        first > 0 && first <= 2 * (2 * 128 + 1) * 17 * 2000,
+        "{first} forces for the failed table"
+    );
+    // asked again, deeper or not, the failure is known: no table is rebuilt
+    let again = calls(&|| {
+        assert!(noisy.above_deepest(&hist, 0.0, 1e-10).unwrap().is_none());
+        let deeper = noisy.load(&hist, 2.0 * deep);
+        assert!(noisy.above_deepest(&deeper, 0.0, 1e-10).unwrap().is_none());
+    });
+    assert!(
+        again < first / 100,
+        "{again} forces asked again after {first}"
+    );
+}
