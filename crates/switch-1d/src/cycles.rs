@@ -328,7 +328,9 @@ fn solve_eq17<S: SurfaceLaw>(
                 return Ok(found);
             }
         }
-        let lo = first_lo.take().unwrap_or(hi - step);
+        // never below the deepest separation the surface covers: an end of impact beyond
+        // it is no end of impact, as on the tables
+        let lo = first_lo.take().unwrap_or(hi - step).max(floor);
         let (int, mut panels) = integral(&ap, lo, hi)?;
         panels.sort_by(|a, b| b.a.total_cmp(&a.a));
         if let Some(closure) = first_closure(&panels, work, film, energy, tol_d)? {

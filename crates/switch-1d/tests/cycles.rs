@@ -273,6 +273,45 @@ fn an_energy_the_surface_cannot_absorb_is_an_error() {
     assert!(run_cycles(&gw, gw.virgin(), bad, quick(1), &mut |_| {}).is_err());
 }
 
+#[test]
+fn no_end_of_impact_is_found_below_the_deepest_separation_the_surface_covers() {
+    let gw = plastic(YieldModulus::AsPrinted);
+    // the work down to that depth (the lowest asperity pressed by its own radius), as the
+    // error reports it
+    let (floor, absorbed) =
+        match end_of_impact(&gw, &GwHistory::VIRGIN, 1e12, FILM, Precision::default()) {
+            Err(switch_1d::SwitchError::EnergyNotAbsorbed { d, absorbed, .. }) => (d, absorbed),
+            other => panic!("{other:?}"),
+        };
+    assert!(absorbed > 0.0 && floor < -gw.roughness().sigma_s);
+    // a little more energy, a film too thin to store any: the balance closes only below
+    // that depth, so there
+    // is no end of impact, on the tables and with evaluated pressures alone (which found
+    // one below it: the 200-scene run's wide scene 48, the reference mode's d_e at -11.7
+    // um where the modes stopped at -8.3 um)
+    let no_film = ImpactFilm {
+        thickness: 1e-30,
+        ..FILM
+    };
+    for tables in [true, false] {
+        let mut surface = Recorder::new(&gw, 1.0, 1.0);
+        surface.work = tables;
+        let e = end_of_impact(
+            &surface,
+            &GwHistory::VIRGIN,
+            1.01 * absorbed,
+            no_film,
+            Precision::default(),
+        );
+        match e {
+            Err(switch_1d::SwitchError::EnergyNotAbsorbed { d, .. }) => {
+                assert_eq!(d, floor, "tables {tables}")
+            }
+            other => panic!("tables {tables}: {other:?}"),
+        }
+    }
+}
+
 /// A surface that wraps another, logs the approach separations it is asked for, counts
 /// the scan pressures, can hide its tension bound, and can report every approach
 /// pressure's error `inflate` times larger than its quadrature's (with a floor of 1e-12 of
