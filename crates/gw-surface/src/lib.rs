@@ -36,6 +36,7 @@
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 
+mod blocks;
 mod error;
 mod history;
 mod reload;

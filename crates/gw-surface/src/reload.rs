@@ -1,11 +1,12 @@
 //! The reload work of one asperity, tabulated once per surface: what eq 17 needs of the
 //! approach above the deepest separation a flat reached (docs/theory.md section 6.2).
 
+use crate::blocks::{Blocks, Cache, Span, MAX_BLOCK_PIECES};
 use crate::error::GwError;
-use crate::virgin::{VirginTable, VirginTables};
+use crate::virgin::{VirginPiece, VirginTable};
 use contact_core::numeric::{integrate, AdaptiveRule, QuadTolerance, NOISE};
-use contact_core::{par, AsperityHistory, AsperityModel, CoreError, Path};
-use std::sync::{Arc, Mutex};
+use contact_core::{par, AsperityHistory, AsperityModel, Path};
+use std::sync::Arc;
 
 /// Chebyshev-Lobatto points per piece (a polynomial of degree 16).
 pub(crate) const NODES: usize = 17;
@@ -95,61 +96,27 @@ impl Piece {
 /// highest Chebyshev coefficients of each piece sum to at most `eps` times the largest |R|
 /// on the block (likewise P). The blocks do not depend on what was asked first, so neither
 /// does a result.
-#[derive(Debug, Clone)]
-pub(crate) struct ReloadTable {
-    eps: f64,
-    /// Block ends built so far, increasing ([`next_end`]).
-    ends: Vec<f64>,
-    /// The asperity's hard breaks (virgin jump-in, zero, plastic breaks), increasing.
-    breaks: Vec<f64>,
-    pieces: Vec<Piece>,
-    /// The block after `x_max` needed more than [`MAX_BLOCK_PIECES`]: the table ends
-    /// there for good (the same blocks come out in the same order whatever was asked
-    /// first, so a table that fails once fails for every x beyond, and is not rebuilt).
-    failed: bool,
+pub(crate) type ReloadTable = Blocks<Piece>;
+
+impl Span for Piece {
+    fn end(&self) -> f64 {
+        self.b
+    }
 }
 
 impl ReloadTable {
-    /// The covered range's upper end (m).
-    pub(crate) fn x_max(&self) -> f64 {
-        *self.ends.last().expect("a table has a block")
-    }
-
-    /// The lower end: the virgin jump-in (m); R = 0 below.
-    pub(crate) fn x_min(&self) -> f64 {
-        self.ends[0]
-    }
-
-    /// The ends of the blocks that bound a kink of R (the virgin jump-in, zero and the
-    /// plastic breaks), m.
-    pub(crate) fn hard_breaks(&self) -> &[f64] {
-        &self.breaks
-    }
-
-    /// The piece that holds x (the last one beyond); the table has at least one piece
-    /// whenever x_max > x_min, which is when it is asked for values above x_min.
-    fn piece(&self, x: f64) -> &Piece {
-        let i = self.pieces.partition_point(|p| p.b < x);
-        &self.pieces[i.min(self.pieces.len() - 1)]
-    }
-
     /// R(x) (J), x within [x_min, x_max]; 0 below x_min.
     pub(crate) fn eval(&self, x: f64) -> f64 {
-        if x <= self.x_min() || self.pieces.is_empty() {
-            return 0.0;
-        }
-        let p = self.piece(x);
-        Piece::interpolate(p.a, p.b, &p.values, x)
+        self.piece(x)
+            .map_or(0.0, |p| Piece::interpolate(p.a, p.b, &p.values, x))
     }
 
     /// An upper bound on the largest force (N) of the asperity on its reload up to x:
     /// the interpolated peak plus the piece's error estimate; 0 below x_min.
     pub(crate) fn peak_bound(&self, x: f64) -> f64 {
-        if x <= self.x_min() || self.pieces.is_empty() {
-            return 0.0;
-        }
-        let p = self.piece(x);
-        Piece::interpolate(p.a, p.b, &p.peaks, x) + p.peak_error
+        self.piece(x).map_or(0.0, |p| {
+            Piece::interpolate(p.a, p.b, &p.peaks, x) + p.peak_error
+        })
     }
 
     /// Each piece's range and the error estimate of R on it (m, m, J).
@@ -264,51 +231,8 @@ const PEAK_WIDTH: f64 = 1e-5;
 const PEAK_MARGIN: f64 = 1e-6;
 /// The peak force is tabulated to this fraction of its largest value on a block.
 const PEAK_TOLERANCE: f64 = 1e-4;
-/// A block of more pieces than this is a failure: the table ends before it for good, and
-/// eq 17 beyond it evaluates pressures. A smooth R needs a few pieces per block and a kink
-/// two more per halving; more is the noise of the reload quadrature (where its estimate
-/// falls short of its error) or a P that is not smooth. On the 200 random scenes of
-/// `cargo xtask accuracy` the blocks that converged took at most 106 pieces (accurate
-/// mode); those that did not used to run to 4096 pieces, tens of seconds, once per cycle.
-pub(crate) const MAX_BLOCK_PIECES: usize = 128;
 
 impl ReloadTable {
-    fn start<M: AsperityModel>(asperity: &M, eps: f64) -> Result<Self, GwError> {
-        let breaks = hard_ends(asperity)?;
-        Ok(Self {
-            ends: vec![breaks[0]],
-            breaks,
-            eps,
-            pieces: Vec::new(),
-            failed: false,
-        })
-    }
-
-    /// The table with every block up to one that covers `x_need`, built ([`next_end`]),
-    /// or up to a block that failed (`failed` then set): more than [`MAX_BLOCK_PIECES`],
-    /// or a reload integral that failed. Either is the same for the same asperity, so a
-    /// failed table is kept, never rebuilt, and serves the blocks below.
-    fn extended<M: AsperityModel + Sync>(
-        mut self,
-        asperity: &M,
-        x_need: f64,
-        rule: &AdaptiveRule,
-    ) -> Self {
-        let unit = 1e-3 * asperity.radius();
-        while !self.failed && self.x_max() < x_need {
-            let a = self.x_max();
-            let b = next_end(a, &self.breaks, unit);
-            let first = self.pieces.len();
-            if let Ok(true) = self.block(asperity, a, b, first, rule) {
-                self.ends.push(b);
-            } else {
-                self.pieces.truncate(first);
-                self.failed = true;
-            }
-        }
-        self
-    }
-
     /// The pieces of the block [a, b], false past [`MAX_BLOCK_PIECES`].
     fn block<M: AsperityModel + Sync>(
         &mut self,
@@ -378,55 +302,6 @@ impl ReloadTable {
     }
 }
 
-/// The error of a table that ends below the interference asked ([`MAX_BLOCK_PIECES`]).
-pub(crate) fn table_failed(what: &'static str) -> GwError {
-    CoreError::NoConvergence {
-        what,
-        iterations: MAX_BLOCK_PIECES,
-    }
-    .into()
-}
-
-/// The end of the block after `last` (m): the next of the hard `breaks` or of the doubling
-/// points `unit` 2^k, whichever comes first. The blocks so depend on the asperity alone,
-/// and a break beyond the range asked leaves the blocks within it as they are (a
-/// material that never yields in range gives the elastic law's table, to the bit).
-pub(crate) fn next_end(last: f64, breaks: &[f64], unit: f64) -> f64 {
-    let mut doubling = unit;
-    while doubling <= last {
-        doubling *= 2.0;
-    }
-    match breaks.iter().copied().find(|&b| b > last) {
-        Some(b) if b < doubling => b,
-        _ => doubling,
-    }
-}
-
-/// The hard breaks of `asperity` (virgin jump-in, zero, plastic breaks), increasing: the
-/// first block ends of the tables.
-pub(crate) fn hard_ends<M: AsperityModel>(asperity: &M) -> Result<Vec<f64>, GwError> {
-    let j0 = asperity
-        .jump_in(AsperityHistory::VIRGIN)
-        .map_err(|source| GwError::Asperity {
-            height: 0.0,
-            d: 0.0,
-            source,
-        })?;
-    let mut ends = vec![j0.min(0.0)];
-    if j0 < 0.0 {
-        ends.push(0.0);
-    }
-    let mut breaks: Vec<f64> = asperity
-        .plastic_breaks()
-        .into_iter()
-        .filter(|b| b.is_finite() && *b > 0.0)
-        .collect();
-    breaks.sort_by(f64::total_cmp);
-    breaks.dedup();
-    ends.extend(breaks);
-    Ok(ends)
-}
-
 /// NODES pairs (R, P) as two arrays.
 fn split(v: Vec<(f64, f64)>) -> ([f64; NODES], [f64; NODES]) {
     let mut out = ([0.0; NODES], [0.0; NODES]);
@@ -443,19 +318,13 @@ fn split(v: Vec<(f64, f64)>) -> ([f64; NODES], [f64; NODES]) {
 /// ([`crate::GreenwoodWilliamson::with_reload_tables`]), as the points of a design map do.
 #[derive(Debug, Default)]
 pub struct ReloadTables {
-    reload: Mutex<Vec<Arc<ReloadTable>>>,
-    virgin: VirginTables,
+    reload: Cache<Piece>,
+    virgin: Cache<VirginPiece>,
 }
 
 impl ReloadTables {
-    fn lock(&self) -> std::sync::MutexGuard<'_, Vec<Arc<ReloadTable>>> {
-        self.reload.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
     /// The table of `asperity` to within `eps` (rounded down to a power of ten) covering
-    /// x up to `x_need` (m). Only the table of that very decade serves, so a result never
-    /// depends on which tables were built before. Built outside the lock: two callers at
-    /// once may both build, and the same blocks give the same table either way.
+    /// x up to `x_need` (m); only the table of that very decade serves ([`Cache::table`]).
     pub(crate) fn table<M: AsperityModel + Sync>(
         &self,
         asperity: &M,
@@ -464,37 +333,29 @@ impl ReloadTables {
     ) -> Result<Arc<ReloadTable>, GwError> {
         // its own rule, so a table does not depend on the surface that built it
         let rule = &AdaptiveRule::new(RULE_NODES)?;
-        let eps = 10f64.powf(eps.log10().floor());
-        let found = self.lock().iter().find(|t| t.eps == eps).cloned();
-        let table = match found {
-            Some(t) if t.x_max() >= x_need || t.failed => t,
-            found => {
-                let base = match found {
-                    Some(t) => (*t).clone(),
-                    None => ReloadTable::start(asperity, eps)?,
-                };
-                let table = Arc::new(base.extended(asperity, x_need, rule));
-                let mut tables = self.lock();
-                tables.retain(|t| t.eps != table.eps);
-                tables.push(table.clone());
-                table
-            }
-        };
-        if table.x_max() >= x_need {
-            Ok(table)
-        } else {
-            Err(table_failed("reload-work table"))
-        }
+        self.reload.table(
+            asperity,
+            eps,
+            x_need,
+            "reload-work table",
+            |t, a, b, first| t.block(asperity, a, b, first, rule),
+        )
     }
 
     /// The virgin-loading table of `asperity` to within `eps` covering x up to `x_need`
-    /// (see [`VirginTables::table`]).
+    /// (m), likewise.
     pub(crate) fn virgin<M: AsperityModel + Sync>(
         &self,
         asperity: &M,
         eps: f64,
         x_need: f64,
     ) -> Result<Arc<VirginTable>, GwError> {
-        self.virgin.table(asperity, eps, x_need)
+        self.virgin.table(
+            asperity,
+            eps,
+            x_need,
+            "virgin-loading table",
+            |t, a, b, first| t.block(asperity, a, b, first),
+        )
     }
 }

@@ -3,16 +3,16 @@
 //! the deepest separation a flat reached, where every asperity in contact loads on its
 //! virgin curve; docs/theory.md section 6.2).
 
+use crate::blocks::{Blocks, Span, MAX_BLOCK_PIECES};
 use crate::error::GwError;
-use crate::reload::{hard_ends, next_end, table_failed, Piece, MAX_BLOCK_PIECES, MAX_DEPTH, NODES};
+use crate::reload::{Piece, MAX_DEPTH, NODES};
 use contact_core::{par, AsperityHistory, AsperityModel, Path};
-use std::sync::{Arc, Mutex};
 
 /// One piece: F_v at the Lobatto points of [a, b], the Chebyshev coefficients of its
 /// antiderivative in t in [-1, 1] (times (b - a)/2, zero at a), V(a), and the error
 /// estimate of F_v's interpolant on the piece.
 #[derive(Debug, Clone)]
-struct VirginPiece {
+pub(crate) struct VirginPiece {
     a: f64,
     b: f64,
     forces: [f64; NODES],
@@ -104,54 +104,27 @@ impl VirginPiece {
 /// Chebyshev coefficients of F_v sum to at most `eps` times its largest |F_v| on the
 /// block. V integrates the interpolants exactly; its error estimate is the integral of the
 /// pieces' estimates.
-#[derive(Debug, Clone)]
-pub(crate) struct VirginTable {
-    eps: f64,
-    ends: Vec<f64>,
-    /// The asperity's hard breaks (virgin jump-in, zero, plastic breaks), increasing.
-    breaks: Vec<f64>,
-    pieces: Vec<VirginPiece>,
-    /// The block after `x_max` failed (see the reload table's field of that name).
-    failed: bool,
+pub(crate) type VirginTable = Blocks<VirginPiece>;
+
+impl Span for VirginPiece {
+    fn end(&self) -> f64 {
+        self.b
+    }
 }
 
 impl VirginTable {
-    pub(crate) fn x_max(&self) -> f64 {
-        *self.ends.last().expect("a table has a block")
-    }
-
-    /// The virgin jump-in (m): F_v = V = 0 below.
-    pub(crate) fn x_min(&self) -> f64 {
-        self.ends[0]
-    }
-
-    /// The block ends (m), where F_v may kink.
-    pub(crate) fn hard_breaks(&self) -> &[f64] {
-        &self.breaks
-    }
-
-    fn piece(&self, x: f64) -> &VirginPiece {
-        let i = self.pieces.partition_point(|p| p.b < x);
-        &self.pieces[i.min(self.pieces.len() - 1)]
-    }
-
     /// F_v(x) (N); 0 at and below the jump-in.
     pub(crate) fn force(&self, x: f64) -> f64 {
-        if x <= self.x_min() || self.pieces.is_empty() {
-            return 0.0;
-        }
-        let p = self.piece(x);
-        Piece::interpolate(p.a, p.b, &p.forces, x)
+        self.piece(x)
+            .map_or(0.0, |p| Piece::interpolate(p.a, p.b, &p.forces, x))
     }
 
     /// V(x) (J) and its error estimate; 0 at and below the jump-in.
     pub(crate) fn work(&self, x: f64) -> (f64, f64) {
-        if x <= self.x_min() || self.pieces.is_empty() {
-            return (0.0, 0.0);
-        }
-        let p = self.piece(x);
-        let error = p.error_at_a + p.error * (x.min(p.b) - p.a);
-        (p.work_at_a + p.work_to(x), error)
+        self.piece(x).map_or((0.0, 0.0), |p| {
+            let error = p.error_at_a + p.error * (x.min(p.b) - p.a);
+            (p.work_at_a + p.work_to(x), error)
+        })
     }
 
     /// A bound on the integral of e_V(h - base) over a measure of heights, given its
@@ -168,37 +141,18 @@ impl VirginTable {
             .sum()
     }
 
-    fn start<M: AsperityModel>(asperity: &M, eps: f64) -> Result<Self, GwError> {
-        let breaks = hard_ends(asperity)?;
-        Ok(Self {
-            ends: vec![breaks[0]],
-            breaks,
-            eps,
-            pieces: Vec::new(),
-            failed: false,
-        })
-    }
-
-    /// The table with every block up to one that covers `x_need`, built, or up to a
-    /// block that failed (see the reload table's `extended`).
-    fn extended<M: AsperityModel + Sync>(mut self, asperity: &M, x_need: f64) -> Self {
-        let unit = 1e-3 * asperity.radius();
-        while !self.failed && self.x_max() < x_need {
-            let a = self.x_max();
-            let b = next_end(a, &self.breaks, unit);
-            let first = self.pieces.len();
-            let built = forces(asperity, a, b).and_then(|values| {
-                let tol = self.eps * values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-                self.refine(asperity, a, b, values, tol, 0, first)
-            });
-            if let Ok(true) = built {
-                self.ends.push(b);
-            } else {
-                self.pieces.truncate(first);
-                self.failed = true;
-            }
-        }
-        self
+    /// The pieces of the block [a, b] (from index `first` on), false past
+    /// [`MAX_BLOCK_PIECES`].
+    pub(crate) fn block<M: AsperityModel + Sync>(
+        &mut self,
+        asperity: &M,
+        a: f64,
+        b: f64,
+        first: usize,
+    ) -> Result<bool, GwError> {
+        let values = forces(asperity, a, b)?;
+        let tol = self.eps * values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        self.refine(asperity, a, b, values, tol, 0, first)
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -260,46 +214,4 @@ fn forces<M: AsperityModel>(asperity: &M, a: f64, b: f64) -> Result<[f64; NODES]
         *o = f;
     }
     Ok(out)
-}
-
-/// The virgin tables a surface has built, one per tolerance decade (see
-/// [`crate::ReloadTables`], which holds them).
-#[derive(Debug, Default)]
-pub(crate) struct VirginTables(Mutex<Vec<Arc<VirginTable>>>);
-
-impl VirginTables {
-    fn lock(&self) -> std::sync::MutexGuard<'_, Vec<Arc<VirginTable>>> {
-        self.0.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// The table of `asperity` to within `eps` (rounded down to a power of ten) covering
-    /// x up to `x_need` (m); only that decade's table serves.
-    pub(crate) fn table<M: AsperityModel + Sync>(
-        &self,
-        asperity: &M,
-        eps: f64,
-        x_need: f64,
-    ) -> Result<Arc<VirginTable>, GwError> {
-        let eps = 10f64.powf(eps.log10().floor());
-        let found = self.lock().iter().find(|t| t.eps == eps).cloned();
-        let table = match found {
-            Some(t) if t.x_max() >= x_need || t.failed => t,
-            found => {
-                let base = match found {
-                    Some(t) => (*t).clone(),
-                    None => VirginTable::start(asperity, eps)?,
-                };
-                let table = Arc::new(base.extended(asperity, x_need));
-                let mut tables = self.lock();
-                tables.retain(|t| t.eps != table.eps);
-                tables.push(table.clone());
-                table
-            }
-        };
-        if table.x_max() >= x_need {
-            Ok(table)
-        } else {
-            Err(table_failed("virgin-loading table"))
-        }
-    }
 }

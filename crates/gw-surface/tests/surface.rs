@@ -525,9 +525,46 @@ fn bound_and_least<M: AsperityModel + Sync>(
 /// curve peaks) and within 5 % of the largest of them: for impacts to 0.5, -1 and -2
 /// sigma_s, both readings of eq 1, and Maugis-Kim, DMT and Hertz contact; Kogut-Etsion and
 /// the bounded reload too.
+/// The integral of the evaluated approach pressure from `lo` to `hi` (J/m^2), split at the
+/// surface's kinks, to 1e-12 of the integral of its magnitude: the work the tables are
+/// checked against.
+fn direct_approach_work<M: AsperityModel + Sync>(
+    gw: &GreenwoodWilliamson<M>,
+    hist: &GwHistory,
+    lo: f64,
+    hi: f64,
+) -> contact_core::numeric::Integral {
+    use contact_core::numeric::{integrate, AdaptiveRule, QuadTolerance, NOISE};
+    let mut breaks = vec![lo];
+    let mut kinks: Vec<f64> = gw
+        .kinks(hist)
+        .into_iter()
+        .filter(|&k| k > lo && k < hi)
+        .collect();
+    kinks.sort_by(f64::total_cmp);
+    breaks.extend(kinks);
+    breaks.push(hi);
+    let tol = QuadTolerance {
+        rel: 0.0,
+        rel_of_abs: 1e-12,
+        abs: 0.0,
+        max_width: 0.0,
+        max_panels: 100_000,
+        noise: NOISE,
+    };
+    integrate(
+        "approach work, directly",
+        |x: f64| gw.pressure(x, hist, Path::Approach),
+        &breaks,
+        false,
+        &AdaptiveRule::new(6).unwrap(),
+        tol,
+    )
+    .unwrap()
+}
+
 #[test]
 fn the_approach_work_above_the_deepest_point_is_the_integral_of_the_approach_pressure() {
-    use contact_core::numeric::{integrate, AdaptiveRule, QuadTolerance, NOISE};
     let pair = ru_pair();
     let check = |name: &str, gw: &dyn Fn(f64) -> (f64, f64, f64, f64)| {
         for deep in [0.5 * SIGMA, -SIGMA, -2.0 * SIGMA] {
@@ -561,32 +598,7 @@ fn the_approach_work_above_the_deepest_point_is_the_integral_of_the_approach_pre
             "bound {:e} against the largest pressure above D {largest:e}",
             above.pressure_bound
         );
-        let mut breaks = vec![deep];
-        let mut kinks: Vec<f64> = gw
-            .kinks(&hist)
-            .into_iter()
-            .filter(|&k| k > deep && k < reach)
-            .collect();
-        kinks.sort_by(f64::total_cmp);
-        breaks.extend(kinks);
-        breaks.push(reach);
-        let tol = QuadTolerance {
-            rel: 0.0,
-            rel_of_abs: 1e-12,
-            abs: 0.0,
-            max_width: 0.0,
-            max_panels: 100_000,
-            noise: NOISE,
-        };
-        let direct = integrate(
-            "approach work, directly",
-            |x: f64| gw.pressure(x, &hist, Path::Approach),
-            &breaks,
-            false,
-            &AdaptiveRule::new(6).unwrap(),
-            tol,
-        )
-        .unwrap();
+        let direct = direct_approach_work(gw, &hist, deep, reach);
         (w.value, w.error, direct.value, direct.error)
     }
     for modulus in [YieldModulus::AsPrinted, YieldModulus::Composite] {
@@ -651,7 +663,6 @@ fn the_approach_work_above_the_deepest_point_is_the_integral_of_the_approach_pre
 /// and Hertz contact.
 #[test]
 fn the_virgin_work_from_the_tables_is_the_integral_of_the_approach_pressure() {
-    use contact_core::numeric::{integrate, AdaptiveRule, QuadTolerance, NOISE};
     fn check<M: AsperityModel + Sync>(name: &str, gw: &GreenwoodWilliamson<M>) {
         let pressed = gw.load(&gw.virgin(), -0.5 * SIGMA);
         let virgin = gw.virgin();
@@ -663,32 +674,7 @@ fn the_virgin_work_from_the_tables_is_the_integral_of_the_approach_pressure() {
             (&pressed, -SIGMA, -0.9 * SIGMA),
         ] {
             let v = gw.virgin_work(hist, lo, hi, 0.0, 1e-10).unwrap().unwrap();
-            let mut breaks = vec![lo];
-            let mut kinks: Vec<f64> = gw
-                .kinks(hist)
-                .into_iter()
-                .filter(|&k| k > lo && k < hi)
-                .collect();
-            kinks.sort_by(f64::total_cmp);
-            breaks.extend(kinks);
-            breaks.push(hi);
-            let tol = QuadTolerance {
-                rel: 0.0,
-                rel_of_abs: 1e-12,
-                abs: 0.0,
-                max_width: 0.0,
-                max_panels: 100_000,
-                noise: NOISE,
-            };
-            let direct = integrate(
-                "approach work, directly",
-                |x: f64| gw.pressure(x, hist, Path::Approach),
-                &breaks,
-                false,
-                &AdaptiveRule::new(6).unwrap(),
-                tol,
-            )
-            .unwrap();
+            let direct = direct_approach_work(gw, hist, lo, hi);
             let w = v.work;
             assert!(
                 (w.value - direct.value).abs()
