@@ -145,6 +145,11 @@ pub fn main(args: &[&str]) -> Result<(), String> {
             other => return Err(format!("unknown option {other}")),
         }
     }
+    if only_scenes && scene_dir.is_none() {
+        return Err(
+            "--no-runs writes the scene files and runs nothing: it needs --scene-files DIR".into(),
+        );
+    }
     // a path that cannot take the file is refused now, not after the hours of the run
     if let Some(p) = &times_path {
         stiction::output::check_file(std::path::Path::new(p)).map_err(|e| e.to_string())?;
