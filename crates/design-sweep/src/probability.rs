@@ -665,39 +665,68 @@ where
         (_, Some(r)) if r > 1.0 => 1,
         _ => 0,
     };
-    // runs of one state between cuts (None: the distribution's end)
-    let mut runs: Vec<(u8, Option<usize>, Option<usize>)> = Vec::new(); // (state, left cut, right cut) as boundary indices
-    let mut current = state(&t.scan[0]);
-    let mut left: Option<usize> = None;
-    for w in t.scan.windows(2) {
-        let (a, b) = (state(&w[0]), state(&w[1]));
-        if a == b {
-            continue;
-        }
-        let kind = if a != 2 && b != 2 {
-            "stiction"
-        } else {
-            "closure"
+    // the state of the stretch between boundaries k - 1 and k (k = 0: below the first),
+    // from the sides the boundaries state: a switch free of stiction just where it starts
+    // to close lies between a closure boundary and a crossing with no scan point inside
+    let closure = e.boundaries.iter().position(|b| b.kind == "closure");
+    let crossing = e.boundaries.iter().position(|b| b.kind == "stiction");
+    let closing_ratio_above_1 = t
+        .scan
+        .iter()
+        .find(|p| p.closes == Some(true))
+        .and_then(|p| p.pull_out_ratio)
+        .map(|r| r > 1.0);
+    let stretch_state = |k: usize| -> Option<u8> {
+        // stretch k lies above boundary j when j < k
+        let above = |j: usize| j < k;
+        let closes = match closure {
+            Some(j) => above(j) == (e.boundaries[j].side == "above"),
+            None => t.scan[0].closes == Some(true),
         };
-        let found = e
-            .boundaries
-            .iter()
-            .position(|x| x.kind == kind && x.value >= w[0].value && x.value <= w[1].value);
-        let Some(k) = found else {
+        if !closes {
+            return Some(2);
+        }
+        let sticks = match crossing {
+            // free below: above it the design sticks
+            Some(j) => above(j) == (e.boundaries[j].side == "below"),
+            None => closing_ratio_above_1?,
+        };
+        Some(u8::from(sticks))
+    };
+    let n_stretches = e.boundaries.len() + 1;
+    let mut states = Vec::with_capacity(n_stretches);
+    for k in 0..n_stretches {
+        match stretch_state(k) {
+            Some(s) => states.push(s),
+            None => {
+                return unavailable(
+                    e,
+                    "the switch closes only between two boundaries, where no scan point tells whether it sticks".into(),
+                )
+            }
+        }
+    }
+    // every scan point must lie in a stretch of its own state
+    for p in &t.scan {
+        let k = e.boundaries.iter().filter(|b| b.value < p.value).count();
+        if states[k] != state(p) {
             return unavailable(
                 e,
                 format!(
-                    "the state changes between {} and {} without a located boundary",
-                    short(w[0].value),
-                    short(w[1].value)
+                    "the state at {} = {} is not the one its boundaries imply",
+                    scatter.field,
+                    short(p.value)
                 ),
             );
-        };
-        runs.push((current, left, Some(k)));
-        current = b;
-        left = Some(k);
+        }
     }
-    runs.push((current, left, None));
+    // runs of one state between cuts (None: the distribution's end)
+    let mut runs: Vec<(u8, Option<usize>, Option<usize>)> = Vec::new();
+    for (k, &s) in states.iter().enumerate() {
+        let left = k.checked_sub(1);
+        let right = (k < e.boundaries.len()).then_some(k);
+        runs.push((s, left, right));
+    }
     let mass = |l: Option<usize>, r: Option<usize>| {
         let lv = l.map(|k| e.boundaries[k].value);
         let rv = r.map(|k| e.boundaries[k].value);

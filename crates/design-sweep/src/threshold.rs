@@ -295,8 +295,11 @@ fn refine(
 /// points are evaluated in parallel on the current rayon pool), then refines every sign
 /// change of ln(ratio) between neighbouring successful scan points with a Brent-Dekker
 /// zero-in in ln(value) (log) or value (lin), falling back to bisection where a point does
-/// not close (ratio 0). Failed scan points are reported and skipped. Crossings closer than
-/// the scan spacing can be missed. Errors only on invalid input or when every scan point
+/// not close (ratio 0). Where the switch stops closing between two scan points, the closure
+/// boundary is refined and the ratio at its closing side is compared with the closing scan
+/// point's, so a design free of stiction just where the switch starts (or stops) closing is
+/// found even with no scan point in it. Failed scan points are reported and skipped. Other
+/// pairs of crossings closer than the scan spacing can be missed. Errors only on invalid input or when every scan point
 /// fails.
 pub fn threshold<F, E>(
     field: &str,
@@ -434,39 +437,16 @@ where
             )),
         }
     };
-    let mut crossings = Vec::new();
-    let mut closure_boundaries = Vec::new();
     let mut evaluations = n;
-    for w in ran.windows(2) {
-        let ((ua, ca, ga), (ub, cb, gb)) = (w[0], w[1]);
-        if ca != cb {
-            let closes_side = if ca { FreeSide::Below } else { FreeSide::Above };
-            let sa = if ca { 1.0 } else { -1.0 };
-            let (found, detail) =
-                refine(c, Sample { x: ua, f: sa }, Sample { x: ub, f: -sa }, &tol_u);
-            evaluations += found.evaluations;
-            let (x1, x2) = (from_u(found.best.x), from_u(found.other.x));
-            let (x1, x2) = (x1.min(x2), x1.max(x2));
-            closure_boundaries.push(ClosureBoundary {
-                value: from_u(0.5 * (to_u(x1) + to_u(x2))),
-                closes_side,
-                uncertainty: 0.5 * (x2 - x1),
-                bracket: [x1, x2],
-                evaluations: found.evaluations,
-                detail,
-            });
-            continue;
-        }
-        if !ca || (ga < 0.0) == (gb < 0.0) {
-            continue;
-        }
+    // the crossing of ratio = 1 refined between two closing designs (u, ln ratio) whose
+    // ratios lie on either side of 1
+    let crossing = |(ua, ga): (f64, f64), (ub, gb): (f64, f64)| -> Crossing {
         let free_side = if ga < 0.0 {
             FreeSide::Below
         } else {
             FreeSide::Above
         };
         let (found, detail) = refine(g, Sample { x: ua, f: ga }, Sample { x: ub, f: gb }, &tol_u);
-        evaluations += found.evaluations;
         let (near, far) = (found.best, found.other);
         let (u1, g1, u2, g2) = if near.x <= far.x {
             (near.x, near.f, far.x, far.f)
@@ -519,7 +499,7 @@ where
             }
             _ => (mid, half, None),
         };
-        crossings.push(Crossing {
+        Crossing {
             critical_value,
             free_side,
             kind,
@@ -529,8 +509,63 @@ where
             slope,
             evaluations: found.evaluations,
             detail,
-        });
+        }
+    };
+    let mut crossings = Vec::new();
+    let mut closure_boundaries = Vec::new();
+    for w in ran.windows(2) {
+        let ((ua, ca, ga), (ub, cb, gb)) = (w[0], w[1]);
+        if ca != cb {
+            let closes_side = if ca { FreeSide::Below } else { FreeSide::Above };
+            let sa = if ca { 1.0 } else { -1.0 };
+            let (found, detail) =
+                refine(c, Sample { x: ua, f: sa }, Sample { x: ub, f: -sa }, &tol_u);
+            evaluations += found.evaluations;
+            let (x1, x2) = (from_u(found.best.x), from_u(found.other.x));
+            let (x1, x2) = (x1.min(x2), x1.max(x2));
+            closure_boundaries.push(ClosureBoundary {
+                value: from_u(0.5 * (to_u(x1) + to_u(x2))),
+                closes_side,
+                uncertainty: 0.5 * (x2 - x1),
+                bracket: [x1, x2],
+                evaluations: found.evaluations,
+                detail: detail.clone(),
+            });
+            // between the closure boundary and the closing scan point the ratio may cross
+            // 1 too (a design free of stiction just where the switch starts to close): the
+            // closing end of the final bracket is a closing design, whose ratio is compared
+            // with the scan point's
+            if detail.is_none() {
+                let (u_scan, g_scan) = if ca { (ua, ga) } else { (ub, gb) };
+                let u_edge = if found.best.f > 0.0 {
+                    found.best.x
+                } else {
+                    found.other.x
+                };
+                evaluations += 1;
+                if let Ok(g_edge) = g(u_edge) {
+                    if (g_edge < 0.0) != (g_scan < 0.0) {
+                        let (a, b) = if u_edge < u_scan {
+                            ((u_edge, g_edge), (u_scan, g_scan))
+                        } else {
+                            ((u_scan, g_scan), (u_edge, g_edge))
+                        };
+                        let found = crossing(a, b);
+                        evaluations += found.evaluations;
+                        crossings.push(found);
+                    }
+                }
+            }
+            continue;
+        }
+        if !ca || (ga < 0.0) == (gb < 0.0) {
+            continue;
+        }
+        let found = crossing((ua, ga), (ub, gb));
+        evaluations += found.evaluations;
+        crossings.push(found);
     }
+    crossings.sort_by(|a, b| a.critical_value.total_cmp(&b.critical_value));
 
     let requirement = match requirement {
         None => None,

@@ -165,6 +165,38 @@ fn a_closure_boundary_splits_the_mass_between_sticking_and_not_closing() {
     assert!(s.ci_low <= 0.375 && 0.375 <= s.ci_high);
 }
 
+/// Sticks below 18, free from 18 to 20, does not close above 20: the free stretch holds no
+/// scan point of the exact answer's threshold (the QA case of the tenth stop, where the exact
+/// answer counted every closing design as sticking, 0.7956 against 0.7656 on a voltage
+/// scatter). uniform(1, 100): P(stick) = 17/99, P(not closing) = 80/99.
+#[test]
+fn a_free_stretch_without_a_scan_point_is_counted_free_in_the_exact_answer() {
+    let f = |x: f64| -> Result<DesignPoint, PointError> {
+        if x > 20.0 {
+            Ok(DesignPoint::does_not_close(1.0))
+        } else {
+            Ok(point(1.0 + (18.0 - x) / 10.0, 1.0))
+        }
+    };
+    let sc = Scatter::parse("switch.voltage=uniform(1,100)").unwrap();
+    let o = ThresholdOptions {
+        tolerance: 1e-9,
+        ratio_rel_error: 1e-8,
+        scan_points: None,
+    };
+    let e = exact_single_field(&sc, exact_range(&sc, 0.0, 1e20), f, &o).unwrap();
+    assert!(e.available, "{e:?}");
+    assert_eq!(e.boundaries.len(), 2);
+    assert_eq!(
+        (e.boundaries[0].kind.as_str(), e.boundaries[1].kind.as_str()),
+        ("stiction", "closure")
+    );
+    let p = e.stiction_probability.unwrap();
+    assert!((p - 17.0 / 99.0).abs() < 1e-7, "{p}");
+    let q = e.does_not_close_probability.unwrap();
+    assert!((q - 80.0 / 99.0).abs() < 1e-7, "{q}");
+}
+
 #[test]
 fn a_ratio_that_is_not_monotone_gives_no_exact_answer_and_says_why() {
     // sticks only inside (3, 6)

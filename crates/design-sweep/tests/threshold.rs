@@ -261,3 +261,36 @@ fn threshold_does_not_depend_on_the_thread_count() {
     };
     assert_eq!(run(1), run(2));
 }
+
+/// The QA case of the tenth stop: the switch sticks far below its closure boundary and is
+/// free just below it, in a window with no scan point inside. Scan of 1..100 (log, 9
+/// points: ..., 10, 17.8, 31.6, ...): 17.8 sticks (ratio 1.02), 31.6 does not close. The
+/// ratio 1 + (18 - x)/10 crosses 1 at 18 and the switch stops closing at 20: free on
+/// (18, 20). Before the fix the threshold refined only the closure boundary and said that
+/// no closing design is free.
+#[test]
+fn a_free_window_between_a_crossing_and_the_closure_boundary_is_found_without_a_scan_point_in_it() {
+    let f = |x: f64| -> Result<DesignPoint, PointError> {
+        if x > 20.0 {
+            Ok(DesignPoint::does_not_close(1.0))
+        } else {
+            Ok(point(1.0 + (18.0 - x) / 10.0, 1.0))
+        }
+    };
+    for (from, to) in [(1.0, 100.0), (100.0, 1.0)] {
+        let t = threshold("switch.voltage", from, to, f, &opts(1e-9)).unwrap();
+        assert_eq!(t.spacing, Spacing::Log);
+        assert!(
+            t.scan.iter().all(|p| !(p.value > 18.0 && p.value < 20.0)),
+            "the window must hold no scan point for this test to mean anything"
+        );
+        assert_eq!(t.crossings.len(), 1, "{t:?}");
+        let c = t.critical_value.unwrap();
+        assert!((c - 18.0).abs() < 1e-6, "{c}");
+        assert_eq!(t.free_side, FreeSide::Above);
+        assert_eq!(t.kind, Some(CrossingKind::Continuous));
+        let b = t.closure_boundary.unwrap();
+        assert!((b - 20.0).abs() < 1e-6, "{b}");
+        assert_eq!(t.closure_boundaries[0].closes_side, FreeSide::Below);
+    }
+}
