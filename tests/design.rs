@@ -202,6 +202,19 @@ fn no_crossing_in_the_range_is_an_answer_with_both_end_ratios() {
     assert_eq!(v["evaluations"], 9);
     let t = ok(&stiction(&args));
     assert!(t.contains("none in range: sticks"), "{t}");
+    // the modelling choices that move a verdict are echoed (eq 1's reading alone moves
+    // this switch's ratio a hundredfold): the laws in the JSON and the table, the scene
+    assert_eq!(v["laws"]["yield_modulus"], "as_printed");
+    assert_eq!(v["laws"]["reload"], "as_printed");
+    assert_eq!(v["laws"]["adhesion"], "maugis_kim");
+    assert_eq!(v["scene"]["contact"]["yield_modulus"], "as_printed");
+    assert!(
+        t.lines().any(|l| l.starts_with("laws ")
+            && l.contains("maugis_kim adhesion")
+            && l.contains("eq 1 as_printed")
+            && l.contains("reload as_printed")),
+        "{t}"
+    );
 }
 
 #[test]
@@ -670,6 +683,14 @@ fn a_law_by_stiffness_map_equals_the_single_law_maps_bit_for_bit() {
     assert!(
         t.contains("contact.plasticity_law = etsion_kadin: switch.k_s ~ ")
             && t.contains("contact.plasticity_law = kogut_etsion: switch.k_s ~ "),
+        "{t}"
+    );
+    // the base scene's modelling choices are echoed, with the caveat that an axis varies
+    // one of them here
+    assert!(
+        t.lines().any(|l| l.starts_with("laws ")
+            && l.contains("plasticity")
+            && l.contains("a map axis may vary them")),
         "{t}"
     );
     let svg = std::fs::read_to_string(dir.join("both/map.svg")).unwrap();

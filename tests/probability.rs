@@ -216,6 +216,13 @@ fn shards_merged_equal_one_run_byte_for_byte_on_any_thread_count() {
         whole.contains("P(stiction)") && whole.contains("drives failure"),
         "{whole}"
     );
+    // the modelling choices are echoed in the table (the merged report reads them from
+    // the parts' scene as well)
+    let laws = |t: &str| {
+        t.lines()
+            .any(|l| l.starts_with("laws ") && l.contains("adhesion") && l.contains("eq 1 "))
+    };
+    assert!(laws(&whole), "{whole}");
     run(2, &d("part1"), Some("1/2"));
     run(2, &d("part2"), Some("2/2"));
     let merged = ok(&stiction(&[
@@ -227,6 +234,7 @@ fn shards_merged_equal_one_run_byte_for_byte_on_any_thread_count() {
         &d("merged"),
     ]));
     assert!(merged.contains("12 run of 12"), "{merged}");
+    assert!(laws(&merged), "{merged}");
     for f in ["samples.csv", "probability.json", "probability.svg"] {
         let a = std::fs::read(dir.join("whole").join(f)).unwrap();
         let b = std::fs::read(dir.join("merged").join(f)).unwrap();

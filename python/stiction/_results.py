@@ -726,6 +726,8 @@ class ThresholdResult(Record):
     scan: Table  #: value, status, pull_out_ratio, closes, validity_holds (, contact_resistance, ...)
     requirement: Optional[Dict[str, Any]]  #: with ``require``: requirement, crossings, window
     accuracy: str
+    laws: Laws  #: the base scene's laws and modelling choices
+    scene: Dict[str, Any]  #: the base scene as run (design settings applied)
     unit: Optional[str]  #: SI unit of the field
     validity: Validity
     warnings: List[ModelWarning]

@@ -101,6 +101,7 @@ def test_the_threshold_is_the_command_lines(cli, paper_switch):
     got.pop("warnings")
     assert got == expected
     assert t.critical_value == pytest.approx(4.494e-8, rel=1e-3) and t.free_side == "above"
+    assert t.laws.yield_modulus == "as_printed" and t.scene["contact"]["reload"] == "as_printed"
     assert t.scan.status[0] == "ok" and t.scan.value[0] == 2e-9
 
 

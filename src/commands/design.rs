@@ -134,6 +134,12 @@ impl Render for ThresholdResult {
             "{:<16}{} (ratio to {:e}); root to {:e} of the value",
             "accuracy", self.accuracy, self.threshold.ratio_rel_error, self.threshold.tolerance
         );
+        let _ = writeln!(
+            s,
+            "{:<16}{}",
+            "laws",
+            super::switch::laws_line(&self.laws).trim_start_matches("laws: ")
+        );
         let invalid = self
             .threshold
             .scan
@@ -307,6 +313,14 @@ impl MapCommand {
 impl Render for MapReport {
     fn table(&self) -> String {
         let mut s = map_table(&self.map, &self.labels);
+        if let Some(l) = super::switch::laws_line_of_echo(self.map.scene()) {
+            let _ = writeln!(
+                s,
+                "{:<16}{} (the base scene's; a map axis may vary them)",
+                "laws",
+                l.trim_start_matches("laws: ")
+            );
+        }
         let invalid = self
             .map
             .points()

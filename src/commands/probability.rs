@@ -342,6 +342,9 @@ impl Render for ProbabilityReport {
                 }
             ),
         );
+        if let Some(l) = super::switch::laws_line_of_echo(&plan.scene) {
+            row(&mut t, "laws", l.trim_start_matches("laws: ").to_owned());
+        }
         row(
             &mut t,
             "counted",

@@ -428,6 +428,24 @@ pub fn laws_line(l: &stiction_model::switch::Laws) -> String {
     )
 }
 
+/// The laws line of a resolved scene echo (a map's or a probability run's `scene`), when
+/// the echo has the contact's four choices.
+pub fn laws_line_of_echo(scene: &serde_json::Value) -> Option<String> {
+    let c = scene.get("contact")?;
+    let word = |k: &str| c.get(k).and_then(|v| v.as_str()).map(str::to_owned);
+    Some(laws_line(&stiction_model::switch::Laws {
+        adhesion: word("adhesion_law")?,
+        plasticity: word("plasticity_law")?,
+        yield_modulus: static_word(&word("yield_modulus")?, &["as_printed", "composite"])?,
+        reload: static_word(&word("reload")?, &["as_printed", "bounded"])?,
+    }))
+}
+
+/// `w` as the one of `words` it equals.
+fn static_word(w: &str, words: &[&'static str]) -> Option<&'static str> {
+    words.iter().copied().find(|&x| x == w)
+}
+
 /// A pull-out ratio for tables: four decimals, scientific notation beyond 1e4.
 fn ratio_text(r: f64) -> String {
     if r.abs() >= 1e4 {

@@ -530,6 +530,10 @@ pub struct ThresholdResult {
     pub threshold: Threshold,
     /// The accuracy mode of the design points.
     pub accuracy: &'static str,
+    /// The laws and modelling choices of the base scene (a point varies only the field).
+    pub laws: crate::switch::Laws,
+    /// The resolved base scene (defaults filled in).
+    pub scene: serde_json::Value,
     /// The SI unit of the parameter, its critical value and uncertainty.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub unit: Option<&'static str>,
@@ -602,6 +606,8 @@ pub fn threshold_with(
         labels: field_labels(std::iter::once(f.key)),
         unit: unit(f.key),
         accuracy: accuracy.as_str(),
+        laws: crate::switch::Laws::of(&spec.contact),
+        scene: spec.common.echo(),
         threshold: t,
         warnings,
     })
