@@ -260,6 +260,22 @@ fn switch_writes_its_files_together() {
     }
     let table = String::from_utf8(out.stdout).unwrap();
     assert!(table.contains("verdict"));
+    // every row of the written CSVs is as wide as its header, the elastic comparison's too
+    for name in ["cycles.csv", "curves.csv"] {
+        let text = std::fs::read_to_string(dir.join(name)).unwrap();
+        let mut lines = text.lines();
+        let width = lines.next().unwrap().split(',').count();
+        for l in lines {
+            assert_eq!(l.split(',').count(), width, "{name}: {l}");
+        }
+    }
+    assert!(
+        std::fs::read_to_string(dir.join("cycles.csv"))
+            .unwrap()
+            .lines()
+            .any(|l| l.starts_with("elastic,")),
+        "the scene compares elastic asperities"
+    );
     // the plot's title is the scene's
     let svg = std::fs::read_to_string(dir.join("switch.svg")).unwrap();
     assert!(svg.contains("paper Fig 4"));

@@ -398,15 +398,19 @@ impl Render for SwitchResult {
             );
         }
         if let Some(e) = &self.elastic {
-            let _ = writeln!(
-                s,
-                "elastic,{},{},{},{},{},",
+            // the elastic comparison has no hold or contact state: its row is as wide as
+            // the header, the cells it has not empty
+            let fields = s.lines().next().map_or(0, |h| h.split(',').count());
+            let row = format!(
+                "elastic,{},{},{},{},{}",
                 csv_num(e.d_e),
                 csv_num(e.pull_out_pressure),
                 csv_num(e.pull_out_separation),
                 e.sticks,
                 csv_num(e.pull_out_ratio)
             );
+            let pad = fields.saturating_sub(row.split(',').count());
+            let _ = writeln!(s, "{row}{}", ",".repeat(pad));
         }
         s
     }
