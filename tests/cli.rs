@@ -395,6 +395,7 @@ fn ohmic_columns_and_the_requirement_option() {
     for (require, needle) in [
         ("contact_resistance=1", "--require"),
         ("resistance<1", "unknown quantity"),
+        ("contact_resistance<nan", "must be finite and > 0"),
     ] {
         let out = stiction(&[
             "design",
@@ -413,6 +414,8 @@ fn ohmic_columns_and_the_requirement_option() {
         assert_eq!(out.status.code(), Some(2), "{require}");
         let e = String::from_utf8(out.stderr).unwrap();
         assert!(e.contains(needle) && e.contains(require), "{e}");
+        // one reason, said once (it read "must be invalid requirement" before)
+        assert!(!e.contains("must be invalid"), "{e}");
     }
     // no electrode area: the resistance cannot be computed, said before any point runs
     let g = temp_file(

@@ -166,3 +166,106 @@ fn bad_height_maps_exit_2_naming_the_file() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--spacing"));
 }
+
+/// A flat map and a perfectly planar one leave only the detrending's rounding (rms a few
+/// 1e-25 m on nanometre heights): refused as flat, naming the file, instead of analysed
+/// into summits of a radius of megametres (the QA case of the tenth stop); a spacing no
+/// instrument has (1e308 m, where the slopes underflow) is refused by name; a nearly flat
+/// map that can be analysed writes a fragment whose out-of-domain values are commented out,
+/// with a warning each, so the fragment never carries a value the scenes reject.
+#[test]
+fn flat_maps_and_impossible_spacings_are_refused_and_fragments_stay_in_the_scene_domain() {
+    let dir = temp_dir("topography-flat");
+    let grid = |f: &dyn Fn(usize, usize) -> f64| {
+        let rows: Vec<String> = (0..8)
+            .map(|j| {
+                (0..8)
+                    .map(|i| format!("{}", f(i, j)))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            })
+            .collect();
+        format!(
+            "# spacing = 10 nm\n# height_unit = nm\n{}\n",
+            rows.join("\n")
+        )
+    };
+    let flat = dir.join("flat.txt");
+    std::fs::write(&flat, grid(&|_, _| 1.0)).unwrap();
+    let tilted = dir.join("tilted.txt");
+    std::fs::write(&tilted, grid(&|i, j| 0.5 * i as f64 + 0.3 * j as f64)).unwrap();
+    for p in [&flat, &tilted] {
+        let out = dir.join(format!("{}-out", p.file_name().unwrap().to_str().unwrap()));
+        let o = stiction(&[
+            "topography",
+            p.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{p:?}: {err}");
+        assert!(
+            err.contains(p.file_name().unwrap().to_str().unwrap()),
+            "{err}"
+        );
+        assert!(err.contains("flat to rounding"), "{err}");
+        assert!(!out.exists(), "nothing written for a map refused");
+    }
+    // a rough map with a spacing no instrument has
+    let rough = dir.join("rough.txt");
+    std::fs::write(
+        &rough,
+        grid(&|i, j| ((i * 7 + j * 13) % 5) as f64 - 2.0 + 0.1 * (i * j % 3) as f64),
+    )
+    .unwrap();
+    let o = stiction(&["topography", rough.to_str().unwrap(), "--spacing", "1e308"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("rough.txt") && err.contains("grid spacing"),
+        "{err}"
+    );
+    // a rough map of nanometre spacing is analysed; the same heights in femtometres over
+    // micrometres give summits too flat for a scene: commented out, with a warning
+    let o = stiction(&["topography", rough.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let smooth = dir.join("smooth.txt");
+    let text = std::fs::read_to_string(&rough)
+        .unwrap()
+        .replace("# spacing = 10 nm", "# spacing = 1000 nm")
+        .replace("# height_unit = nm", "# height_unit = 1e-15");
+    std::fs::write(&smooth, text).unwrap();
+    let out = dir.join("smooth-out");
+    let o = stiction(&[
+        "topography",
+        smooth.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(err.contains("outside_scene_domain"), "{err}");
+    let fragment = std::fs::read_to_string(out.join("surface.toml")).unwrap();
+    // every value left uncommented in the fragment lies inside its scene key's domain
+    let mut section = String::new();
+    for line in fragment.lines() {
+        let body = line.split('#').next().unwrap().trim();
+        if body.starts_with('[') {
+            section = body.trim_matches(|c| c == '[' || c == ']').to_string();
+        } else if let Some((k, v)) = body.split_once('=') {
+            let key = format!("{section}.{}", k.trim());
+            let x: f64 = v.trim().parse().unwrap();
+            let d = stiction::model::keys::key(&key).unwrap();
+            assert!(d.domain.contains(x), "{key} = {x} left in the fragment");
+        }
+    }
+    assert!(
+        fragment.contains("# sigma_s = ") || fragment.contains("# radius = "),
+        "{fragment}"
+    );
+}

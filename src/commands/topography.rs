@@ -11,8 +11,8 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use stiction_model::guards::si;
 use stiction_model::topography::{
-    analyze_file, scene_fragment, AnalysisOptions, Detrend, Format as MapFormat, LengthUnit,
-    ReadOptions, Route, TopographyReport,
+    analyze_file, fragment_within_domains, scene_fragment, AnalysisOptions, Detrend,
+    Format as MapFormat, LengthUnit, ReadOptions, Route, TopographyReport,
 };
 
 /// The files `--out` writes.
@@ -140,10 +140,11 @@ impl TopographyCommand {
             _ => Route::Spectral,
         };
         let fragment = scene_fragment(&report, route).map_err(stiction_model::ModelError::from)?;
+        let (fragment, warnings) = fragment_within_domains(&fragment);
         let result = TopographyResult {
             report,
             fragment,
-            warnings: Vec::new(),
+            warnings,
         };
         let mut outputs = Outputs::default();
         if let Some(dir) = &self.out {

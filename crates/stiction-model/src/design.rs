@@ -77,8 +77,13 @@ pub fn design_scene(scene: &Scene, accuracy: Option<Accuracy>) -> Result<Scene, 
 /// and `switch.electrode_area`; both quantities need `contact_state` other than `none`.
 /// Errors name the argument `require`.
 pub fn requirement(text: &str, base: &SwitchSpec) -> Result<Requirement, ModelError> {
-    let r = Requirement::parse(text)
-        .map_err(|e| ModelError::argument("require", text, e.to_string()))?;
+    let r = Requirement::parse(text).map_err(|e| ModelError::Option {
+        name: "require".into(),
+        message: match e {
+            design_sweep::DesignError::Requirement(m) => m,
+            e => e.to_string(),
+        },
+    })?;
     if base.contact_states == crate::spec::ContactStates::None {
         return Err(ModelError::argument(
             "require",

@@ -38,6 +38,9 @@ pub mod code {
     pub const HOLD_DEEPER_THAN_IMPACT: &str = "hold_deeper_than_impact";
     /// A real contact fraction at which the asperities' spots merge.
     pub const DENSE_CONTACT_SPOTS: &str = "dense_contact_spots";
+    /// A value derived for a scene (a topography's GW parameters) outside the domain the
+    /// scene key accepts: left out of the fragment written.
+    pub const OUTSIDE_SCENE_DOMAIN: &str = "outside_scene_domain";
 }
 
 /// A physics guard raised by a run: the model is used where it leaves its ground.

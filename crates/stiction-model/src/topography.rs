@@ -24,8 +24,59 @@
 //! ```
 
 use crate::error::ModelError;
+use crate::guards::{code, Warning as ModelWarning};
 pub use ::topography::*;
 use std::path::Path;
+
+/// `fragment` (a [`scene_fragment`]) with every value outside the domain of its scene key
+/// commented out, and a warning for each: a fragment is never written with a value the
+/// scenes reject (a map nearly flat gives summits of a radius of megametres, for
+/// instance), and the warning says which value and why.
+///
+/// ```
+/// use stiction_model::topography::fragment_within_domains;
+/// let (text, w) = fragment_within_domains("[surface]\nsigma_s = 5e-9\n[contact]\nradius = 4.8e8 # m\n");
+/// assert!(text.contains("sigma_s = 5e-9") && text.contains("# radius = 4.8e8"));
+/// assert_eq!(w.len(), 1);
+/// assert!(w[0].message.contains("contact.radius"));
+/// ```
+pub fn fragment_within_domains(fragment: &str) -> (String, Vec<ModelWarning>) {
+    let mut section = String::new();
+    let mut out = String::with_capacity(fragment.len() + 128);
+    let mut warnings = Vec::new();
+    for line in fragment.lines() {
+        let body = line.split('#').next().unwrap_or("").trim();
+        if let Some(name) = body.strip_prefix('[').and_then(|b| b.strip_suffix(']')) {
+            section = name.trim().to_owned();
+        } else if let Some((k, v)) = body.split_once('=') {
+            let full = if section.is_empty() {
+                k.trim().to_owned()
+            } else {
+                format!("{section}.{}", k.trim())
+            };
+            let value = v.trim().parse::<f64>().ok();
+            if let (Some(key), Some(x)) = (crate::keys::key(&full), value) {
+                if key.domain.is_numeric() && !key.domain.contains(x) {
+                    warnings.push(ModelWarning::note(
+                        code::OUTSIDE_SCENE_DOMAIN,
+                        format!(
+                            "{full} = {} lies outside the scene's domain {}: left out of the fragment (commented), which needs a value of your own there",
+                            crate::keys::num(x),
+                            key.domain.describe()
+                        ),
+                    ));
+                    out.push_str("# ");
+                    out.push_str(line);
+                    out.push_str("  # outside the scene's domain: see the warning\n");
+                    continue;
+                }
+            }
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    (out, warnings)
+}
 
 /// Reads the height map at `path` and analyses it.
 pub fn analyze_file(
@@ -34,7 +85,12 @@ pub fn analyze_file(
     options: &AnalysisOptions,
 ) -> Result<TopographyReport, ModelError> {
     let m = read_path(path, read)?;
-    Ok(analyze_measurement(&m, options)?)
+    analyze_measurement(&m, options).map_err(|e| {
+        ModelError::from(topography::TopographyError::InFile {
+            path: path.to_path_buf(),
+            source: Box::new(e),
+        })
+    })
 }
 
 /// Analyses a height map held in memory.

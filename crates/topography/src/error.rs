@@ -93,6 +93,15 @@ pub enum TopographyError {
         /// The allowed range or what is wrong.
         message: String,
     },
+    /// The map read from a file could not be analysed (a parameter of it outside its
+    /// domain, such as a map flat to rounding): the file named with the reason.
+    #[error("{path}: {source}")]
+    InFile {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with its map.
+        source: Box<TopographyError>,
+    },
 }
 
 impl TopographyError {

@@ -22,6 +22,13 @@ impl HeightMap {
     /// The smallest grid any analysis accepts in each direction (a summit needs its 8
     /// neighbours, a curvature its two).
     pub const MIN_SIDE: usize = 3;
+    /// The finest grid spacing a measured map may have (m): a picometre, below any
+    /// instrument's ([`crate::io::read_path`] refuses a file's map outside this range and
+    /// [`Self::MAX_SPACING`]; maps built in memory, nondimensional ones included, are free).
+    pub const MIN_SPACING: f64 = 1e-12;
+    /// The coarsest grid spacing a measured map may have (m): a metre (at 1e308 m the
+    /// slopes underflow and the map would read as flat).
+    pub const MAX_SPACING: f64 = 1.0;
 
     /// A map of `nx` x `ny` heights `z` (m, row-major, x fastest) with spacings `dx`, `dy` (m).
     ///
@@ -49,7 +56,7 @@ impl HeightMap {
             if !(v.is_finite() && v > 0.0) {
                 return Err(TopographyError::param(
                     name,
-                    v,
+                    format!("{v:e}"),
                     "a grid spacing must be finite and > 0 (m)",
                 ));
             }

@@ -258,9 +258,25 @@ struct Core {
     summits: Option<SummitStatistics>,
 }
 
+/// The detrended heights count as flat when their rms is at most this fraction of the
+/// largest height of the map as given: the detrending's own rounding is a few 1e-16 of it,
+/// and an instrument resolves 1e-7 of its range at best (a 24-bit scale).
+const FLAT_TO_ROUNDING: f64 = 1e-12;
+
 fn core(map: &HeightMap, how: Detrend) -> Result<Core> {
+    let largest = map.heights().iter().fold(0.0_f64, |m, z| m.max(z.abs()));
     let (map, summary) = detrend(map, how)?;
     let moments = finite_difference_moments(&map);
+    let rms = moments.rms_height();
+    if largest > 0.0 && rms <= FLAT_TO_ROUNDING * largest {
+        return Err(TopographyError::param(
+            "height map",
+            format!("rms height {rms:e} m after detrending, heights up to {largest:e} m"),
+            format!(
+                "the detrended map is flat to rounding (rms at most {FLAT_TO_ROUNDING:e} of the heights): nothing to analyse; a flat or perfectly planar map has no roughness"
+            ),
+        ));
+    }
     if !(moments.m2 > 0.0 && moments.m4 > 0.0) {
         return Err(TopographyError::param(
             "height map",

@@ -233,14 +233,33 @@ pub fn decode(
             unit: "bytes",
         });
     }
-    match format {
+    let m = match format {
         Format::Text => text::decode_text(path, bytes, opts, false),
         Format::Xyz => text::decode_text(path, bytes, opts, true),
         Format::Npy => npy::decode(path, bytes, opts),
         Format::Gsf => gsf::decode(path, bytes, opts),
         Format::Gwy => gwy::decode(path, bytes, opts),
         Format::X3p => x3p::decode(path, bytes, opts),
+    }?;
+    // a measured map's spacing lies between a picometre and a metre (a file, or --spacing,
+    // saying 1e308 m would make every slope underflow and the map read as flat)
+    for (name, v) in [("dx", m.map.dx()), ("dy", m.map.dy())] {
+        if !(HeightMap::MIN_SPACING..=HeightMap::MAX_SPACING).contains(&v) {
+            return Err(TopographyError::InFile {
+                path: path.to_path_buf(),
+                source: Box::new(TopographyError::param(
+                    name,
+                    format!("{v:e} m"),
+                    format!(
+                        "a measured map's grid spacing lies in [{:e}, {:e}] m (a picometre to a metre)",
+                        HeightMap::MIN_SPACING,
+                        HeightMap::MAX_SPACING
+                    ),
+                )),
+            });
+        }
     }
+    Ok(m)
 }
 
 /// The bytes of a map in `format` (heights and spacings in metres; formats with units

@@ -35,7 +35,13 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         _ => {
             return Err(st.err(
                 "version",
-                format!("unknown .npy version {:?}", bytes.get(6..8)),
+                match bytes.get(6..8) {
+                    Some(v) => format!(
+                        "unknown .npy format version {}.{} (1.0, 2.0 and 3.0 are read)",
+                        v[0], v[1]
+                    ),
+                    None => "the file ends before its format version".to_string(),
+                },
             ))
         }
     };
