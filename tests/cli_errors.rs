@@ -426,6 +426,49 @@ fn cases() -> Vec<Case> {
             &["md", "--lambda", "one"],
             &["invalid value 'one'", "--lambda"],
         ),
+        // an option replacing what --set gave would drop the --set value unread, an invalid
+        // one included (the QA case of the tenth stop: exit 0 with cycles = nan)
+        arg_case(
+            "--set overridden by an option",
+            &[
+                "switch",
+                "--accuracy",
+                "fast",
+                "--cycles",
+                "2",
+                "--set",
+                "cycles=nan",
+            ],
+            &["invalid --cycles", "also set by --set cycles"],
+        ),
+        arg_case(
+            "--set overridden by --vary",
+            &[
+                "design",
+                "map",
+                "--vary",
+                "surface.sigma_s=2e-9:1e-7:log:3",
+                "--set",
+                "surface.sigma_s=5e-9",
+                "--out",
+                "/nonexistent/never-written",
+            ],
+            &["invalid --vary", "also set by --set surface.sigma_s"],
+        ),
+        arg_case(
+            "--set overridden by --scatter",
+            &[
+                "design",
+                "probability",
+                "--scatter",
+                "surface.sigma_s=lognormal(7.78e-9,1.1)",
+                "--set",
+                "surface.sigma_s=5e-9",
+                "--samples",
+                "10",
+            ],
+            &["invalid --scatter", "also set by --set surface.sigma_s"],
+        ),
         // a valid but huge run is refused before it computes (../shared/repro D13)
         Case {
             name: "curve output bounded",

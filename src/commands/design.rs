@@ -108,6 +108,7 @@ impl ThresholdCommand {
     /// Runs the search.
     pub fn execute(&self, ctx: Ctx) -> Result<String, Error> {
         let loaded = self.scene.load(Kind::Switch, &[])?;
+        loaded.refuse_set_of(&self.vary, "--vary")?;
         let r = design::threshold_with(
             &loaded.scene,
             ctx.registry,
@@ -273,6 +274,9 @@ impl MapCommand {
     /// Runs the map (or one shard of it).
     pub fn execute(&self, ctx: Ctx) -> Result<String, Error> {
         let loaded = self.scene.load(Kind::Switch, &[])?;
+        for v in &self.vary {
+            loaded.refuse_set_of(v.split('=').next().unwrap_or(v), "--vary")?;
+        }
         let accuracy = self.accuracy.map(Into::into);
         // everything checked before the first point runs, the output folder included
         design::map_request_with(

@@ -74,6 +74,14 @@ impl SceneArgs {
             blame.push((key.to_string(), format!("--set {key}")));
         }
         for (key, value, option) in edits {
+            // an option that replaces what --set gave would drop the --set value unread
+            // (even an invalid one): the two contradict each other unless they agree
+            if blame.iter().any(|(k, _)| k == key) && scene.get(key) != Some(value) {
+                return Err(Error::usage(
+                    option,
+                    format!("`{key}` is also set by --set {key}: give one of the two"),
+                ));
+            }
             scene.set(key, value.clone())?;
             blame.push((key.to_string(), option.to_string()));
         }
@@ -82,6 +90,23 @@ impl SceneArgs {
 }
 
 impl Loaded {
+    /// Refuses a field that `--set` gave and `option` (`--vary`, `--scatter`) would
+    /// replace at every point: the `--set` value would be dropped without a word.
+    pub fn refuse_set_of(&self, field: &str, option: &str) -> Result<(), Error> {
+        let field = field.trim();
+        if self
+            .blame
+            .iter()
+            .any(|(k, by)| k == field && by.starts_with("--set "))
+        {
+            return Err(Error::usage(
+                option,
+                format!("`{field}` is also set by --set {field}, which {option} would replace at every point: give one of the two"),
+            ));
+        }
+        Ok(())
+    }
+
     /// A model error on a key an option set, as an error of that option; a library
     /// argument as the option of its name; others as they are.
     pub fn blame(&self, e: ModelError) -> Error {

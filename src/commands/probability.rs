@@ -89,6 +89,9 @@ impl ProbabilityCommand {
             ));
         }
         let loaded = self.scene.load(Kind::Switch, &[])?;
+        for v in &self.scatter {
+            loaded.refuse_set_of(v.split('=').next().unwrap_or(v), "--scatter")?;
+        }
         let request = ProbabilityRequest {
             scatter: self.scatter.clone(),
             correlate: self.correlate.clone(),
