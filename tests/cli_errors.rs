@@ -426,6 +426,20 @@ fn cases() -> Vec<Case> {
             &["md", "--lambda", "one"],
             &["invalid value 'one'", "--lambda"],
         ),
+        // a misspelt section: the switch keys under it are unknown, and that is said
+        // before "missing switch.d0" (the QA case of the tenth stop)
+        Case {
+            name: "misspelt section",
+            kind: "switch",
+            scene: Some(
+                scene::PAPER_SWITCH
+                    .replace("[switch]", "[switchx]")
+                    .into_bytes(),
+            ),
+            args: vec![],
+            fragments: vec!["unknown key `switchx`"],
+            code: 2,
+        },
         // an option replacing what --set gave would drop the --set value unread, an invalid
         // one included (the QA case of the tenth stop: exit 0 with cycles = nan)
         arg_case(

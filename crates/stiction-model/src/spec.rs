@@ -574,6 +574,12 @@ impl<'a> Reader<'a> {
                 key: typo,
             };
         }
+        // a key or section no scene of this kind takes (a misspelt section such as
+        // [switchx], a value where a section belongs) explains the missing key better than
+        // the missing key does: it is reported first
+        if let Err(unknown) = self.check_foreign(self.scene.tree(), "") {
+            return unknown;
+        }
         let k = keys::key(key);
         SceneError::Missing {
             file: self.file(),
@@ -1273,6 +1279,41 @@ impl<'a> Reader<'a> {
             },
             _ => return Err(bad()),
         })
+    }
+
+    /// Refuses a key of `t` (at `prefix`) that no scene of this kind takes at all, whether
+    /// read yet or not: what [`Self::check_table`] refuses at the end, less the keys still
+    /// to be read and the law-parameter tables (which their laws check).
+    fn check_foreign(&self, t: &toml::Table, prefix: &str) -> Result<(), SceneError> {
+        for (k, v) in t {
+            let key = if prefix.is_empty() {
+                k.clone()
+            } else {
+                format!("{prefix}.{k}")
+            };
+            if self.used.contains(&key)
+                || keys::of(self.kind).any(|f| f.key == key)
+                || [
+                    "contact.adhesion",
+                    "contact.plasticity",
+                    "contact.effective_radius",
+                ]
+                .contains(&key.as_str())
+            {
+                continue;
+            }
+            let is_section =
+                v.is_table() && keys::of(self.kind).any(|f| f.key.starts_with(&format!("{key}.")));
+            if is_section {
+                self.check_foreign(v.as_table().expect("a table"), &key)?;
+                continue;
+            }
+            // the end-of-run check words the refusal (its hint lists the section's keys)
+            let mut one = toml::Table::new();
+            one.insert(k.clone(), v.clone());
+            return self.check_table(&one, prefix);
+        }
+        Ok(())
     }
 
     /// Refuses any key of the scene that this kind does not take.
