@@ -426,6 +426,19 @@ fn cases() -> Vec<Case> {
             &["md", "--lambda", "one"],
             &["invalid value 'one'", "--lambda"],
         ),
+        // md's path options belong to one point, and a retraction stays within its excursion
+        arg_case(
+            "md --from without a point",
+            &["md", "--lambda", "0.5", "--from", "3"],
+            &["invalid --from", "applies to one point"],
+        ),
+        arg_case(
+            "md retract point beyond its excursion",
+            &[
+                "md", "--lambda", "0.5", "--delta", "4", "--path", "retract", "--from", "3",
+            ],
+            &["invalid --delta", "at most the excursion's extreme from = 3"],
+        ),
         // a misspelt section: the switch keys under it are unknown, and that is said
         // before "missing switch.d0" (the QA case of the tenth stop)
         Case {

@@ -50,6 +50,19 @@ impl MdCommand {
     /// The curve, or one point with --delta.
     pub fn execute(&self) -> Result<String, Error> {
         let Some(delta) = self.delta else {
+            // the path options choose the branch of one point: the curve has every branch
+            if self.from.is_some() {
+                return Err(Error::usage(
+                    "--from",
+                    "applies to one point (--delta D --path retract --from F); the curve without --delta shows every branch",
+                ));
+            }
+            if self.path == PathArg::Retract {
+                return Err(Error::usage(
+                    "--path retract",
+                    "applies to one point (--delta D --from F); the curve without --delta shows every branch",
+                ));
+            }
             if self.points < 0 {
                 return Err(Error::usage(
                     "--points",
