@@ -437,7 +437,10 @@ fn cases() -> Vec<Case> {
             &[
                 "md", "--lambda", "0.5", "--delta", "4", "--path", "retract", "--from", "3",
             ],
-            &["invalid --delta", "at most the excursion's extreme from = 3"],
+            &[
+                "invalid --delta",
+                "at most the excursion's extreme from = 3",
+            ],
         ),
         // a misspelt section: the switch keys under it are unknown, and that is said
         // before "missing switch.d0" (the QA case of the tenth stop)

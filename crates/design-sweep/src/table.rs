@@ -366,6 +366,32 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
         for p in b {
             row(&mut s, "boundary", crossing_text(&a.field, unit, &p));
         }
+        // where the switch stops closing between neighbouring points: a design boundary of
+        // its own, which bounds a free side that reaches it (never "free" beyond it)
+        let points = map.points();
+        for w in points.windows(2) {
+            let closes = |p: &crate::MapPoint| match p.status {
+                crate::Status::Ok => Some(true),
+                crate::Status::DoesNotClose => Some(false),
+                _ => None,
+            };
+            if let (Some(c0), Some(c1)) = (closes(&w[0]), closes(&w[1])) {
+                if c0 != c1 && w[1].index == w[0].index + 1 {
+                    let (x0, x1) = (w[0].values[0], w[1].values[0]);
+                    let (lo, hi) = (x0.min(x1), x0.max(x1));
+                    let side = if c0 == (x0 < x1) { "below" } else { "above" };
+                    row(
+                        &mut s,
+                        "closure",
+                        format!(
+                            "the switch stops closing between {} and {} (it closes {side}): a closure boundary, not a stiction boundary; `design threshold` locates it",
+                            with_unit(lo, 6, unit),
+                            with_unit(hi, 6, unit)
+                        ),
+                    );
+                }
+            }
+        }
     } else if g.has_categorical() {
         let by_word = map.boundary_by_word();
         if by_word.is_empty() {

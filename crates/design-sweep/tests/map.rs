@@ -343,3 +343,36 @@ fn power_law_evaluator_is_usable_as_a_map_evaluator() {
     // log-ratio is linear in log x: interpolation is exact
     assert!((b[0].value / 1e3 - 1.0).abs() < 1e-12, "{}", b[0].value);
 }
+
+/// A 1-D map whose switch stops closing between two grid points says so beside the
+/// stiction boundary, with the side where it closes (the QA case of the tenth stop: "free
+/// below" read as free down to the range's end, where the switch no longer closes).
+#[test]
+fn a_1d_map_names_where_the_switch_stops_closing() {
+    // closes above 45, sticks above 50: free on (45, 50)
+    let eval = |v: &[(&str, Level<'_>)]| -> Result<DesignPoint, PointError> {
+        let Level::Number(x) = v[0].1 else {
+            unreachable!()
+        };
+        if x < 45.0 {
+            Ok(DesignPoint::does_not_close(1.0))
+        } else {
+            Ok(common::point(x / 50.0, 1.0))
+        }
+    };
+    for spec in ["switch.voltage=40:60:lin:11", "switch.voltage=60:40:lin:11"] {
+        let m = run_map(request(&[spec], None), eval, |_, _| {});
+        let t = design_sweep::map_table(&m, &Labels::new().with_unit("switch.voltage", "V"));
+        let closure: Vec<&str> = t.lines().filter(|l| l.starts_with("closure")).collect();
+        assert_eq!(closure.len(), 1, "{t}");
+        assert!(
+            closure[0].contains("between 44 V and 46 V") && closure[0].contains("closes above"),
+            "{t}"
+        );
+        assert!(
+            t.lines()
+                .any(|l| l.starts_with("boundary") && l.contains("free below")),
+            "{t}"
+        );
+    }
+}
