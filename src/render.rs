@@ -97,6 +97,8 @@ pub fn pressure(p: f64) -> String {
 /// A number in CSV: shortest round-trip digits in scientific notation (every command
 /// writes the same format), empty for an absent value.
 pub fn csv_num(v: f64) -> String {
+    // a negative zero (a force at the jump, rounding) reads as 0 in a table of numbers
+    let v = if v == 0.0 { 0.0 } else { v };
     format!("{v:e}")
 }
 
@@ -124,6 +126,15 @@ pub fn print_warnings(warnings: &[Warning]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn csv_numbers_round_trip_and_a_negative_zero_reads_as_zero() {
+        assert_eq!(csv_num(-0.0), "0e0");
+        assert_eq!(csv_num(0.0), "0e0");
+        for v in [-1.5e-9, 7.78e-9, 1e308, -3.0] {
+            assert_eq!(csv_num(v).parse::<f64>().unwrap(), v);
+        }
+    }
 
     #[test]
     fn numbers_take_the_prefix_that_fits_and_never_print_zero_for_a_value() {

@@ -485,7 +485,14 @@ fn table_header(r: &SwitchResult) -> String {
         mark("k_s"),
         format_args!("{:.4}", r.voltage),
         mark("voltage"),
-        num(r.impact_energy),
+        // a derived energy to six digits (the given one as given)
+        if mark("impact_energy") == "derived" {
+            num(format!("{:.5e}", r.impact_energy)
+                .parse()
+                .unwrap_or(r.impact_energy))
+        } else {
+            num(r.impact_energy)
+        },
         mark("impact_energy"),
         format_args!("{:.4}", r.v_pull_in),
         format_args!("{:.4}", r.dynamic_pull_in_voltage),
