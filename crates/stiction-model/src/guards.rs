@@ -113,6 +113,12 @@ impl Validity {
                 code::BEYOND_FIT_RANGE => "most of the load rests on extrapolated plasticity fits",
                 code::ABOVE_HARDNESS => "the nominal pressure exceeds the hardness",
                 code::ABOVE_STRENGTH => "the pull-out exceeds the interface's strength w/z0",
+                code::DENSE_CONTACT_SPOTS => {
+                    "the contact spots are so dense that they merge (GW asperities are independent)"
+                }
+                code::NON_DEEPENING => "an impact stopped shallower than an earlier one",
+                code::HOLD_DEEPER_THAN_IMPACT => "the hold presses deeper than the impact",
+                code::OUTSIDE_SCENE_DOMAIN => "a derived value lies outside its scene key's domain",
                 other => other,
             })
             .collect();
@@ -329,6 +335,20 @@ mod tests {
         assert_eq!(v.reasons, vec![code::ABOVE_HARDNESS, code::ABOVE_STRENGTH]);
         assert!(v.words().starts_with("outside the model's validity: "));
         assert!(Validity::of(&w[1..2]).holds);
+        // every code the guards raise reads as words, never as the code itself
+        for c in [
+            code::ADHESION_YIELDS,
+            code::BEYOND_FIT_RANGE,
+            code::ABOVE_HARDNESS,
+            code::ABOVE_STRENGTH,
+            code::NON_DEEPENING,
+            code::HOLD_DEEPER_THAN_IMPACT,
+            code::DENSE_CONTACT_SPOTS,
+            code::OUTSIDE_SCENE_DOMAIN,
+        ] {
+            let words = Validity::of(&[Warning::invalid(c, "x".into())]).words();
+            assert!(!words.contains(c), "{words}");
+        }
     }
 
     #[test]
