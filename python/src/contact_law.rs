@@ -175,6 +175,22 @@ impl PyContactLaw {
         let d = ArrayIn::new(d)?;
         let mut st = State::VIRGIN;
         if let Some(s) = state {
+            // a key the state does not have (`path` for `retract`, a typo) would be ignored
+            // and the law followed from another history without a word
+            const KEYS: [&str; 5] = ["d_min", "last_d", "d_turn", "retract", "history_exact"];
+            for k in s.keys() {
+                let name: String = k.str()?.extract()?;
+                if !KEYS.contains(&name.as_str()) {
+                    return Err(argument(
+                        "state",
+                        format!("a dict with the key {name:?}"),
+                        format!(
+                            "a state as follow() returns it, with the keys {}",
+                            KEYS.join(", ")
+                        ),
+                    ));
+                }
+            }
             let get = |k: &str, default: f64| -> PyResult<f64> {
                 Ok(match s.get_item(k)? {
                     Some(v) => v.extract()?,

@@ -46,7 +46,21 @@ impl PyProbability {
     /// What `stiction design probability --format json` prints: `probability.json`
     /// without the samples.
     fn summary_json(&self) -> String {
-        self.run.summary_json()
+        // as the command prints it: the run's view, then the validity of its samples
+        #[derive(serde::Serialize)]
+        struct Out<'a> {
+            #[serde(flatten)]
+            run: design_sweep::ProbabilityView<'a>,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            validity: Option<&'a Validity>,
+        }
+        let mut s = serde_json::to_string_pretty(&Out {
+            run: self.run.view(false),
+            validity: self.validity.as_ref(),
+        })
+        .expect("a probability run always serialises");
+        s.push('\n');
+        s
     }
 
     /// `samples.csv` exactly as `stiction design probability --out` writes it.

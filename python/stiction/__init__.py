@@ -23,6 +23,8 @@ from __future__ import annotations
 import os
 from typing import Any, List, Mapping, Optional, Sequence, Union
 
+import numpy as np
+
 from . import _stiction
 from ._errors import InputError, NumericalError, StictionError
 from ._laws import (
@@ -169,6 +171,13 @@ def maugis_kim_force(
         if from_ is not None and from_ != delta_max:
             raise InputError(f"from_ = {from_!r} and delta_max = {delta_max!r}: give one (they name the same value)")
         from_ = delta_max
+    if path == "retract" and from_ is not None:
+        deepest = np.max(np.asarray(delta, dtype=float)) if np.size(delta) else -np.inf
+        if deepest > from_:
+            raise InputError(
+                f"delta = {deepest!r}: at most the excursion's extreme from_ = {from_!r} on a "
+                "retraction (a deeper point is on the approach), as `stiction md` says"
+            )
     return _stiction.maugis_kim_force(lam, delta, path, from_)
 
 
@@ -244,9 +253,21 @@ def design_merge(
     or paths of their probability.json) into exactly the unsharded run, as ``stiction
     design merge``. The parts must be all of one kind."""
     def is_probability(p: Any) -> bool:
-        return isinstance(p, ProbabilityResult) or (
-            not isinstance(p, DesignMap) and os.path.basename(os.fspath(p)) == "probability.json"
-        )
+        if isinstance(p, ProbabilityResult):
+            return True
+        if isinstance(p, DesignMap):
+            return False
+        # a file's kind from its content (its name may be anything), as the command reads it
+        path = os.fspath(p)
+        if os.path.isdir(path):
+            return os.path.exists(os.path.join(path, "probability.json"))
+        try:
+            with open(path, "rb") as f:
+                head = f.read(4096)
+        except OSError:
+            return os.path.basename(path) == "probability.json"
+        # the "format" tag comes first in both files
+        return b'"format": "stiction-design-probability"' in head
 
     kinds = {is_probability(p) for p in parts}
     if len(kinds) > 1:
@@ -369,6 +390,13 @@ def calibrate(
         missing = [c for c in cols if c not in fe]
         if missing:
             raise InputError(f"fe: the columns {', '.join(missing)} are missing (give {', '.join(cols)})")
+        lengths = {c: len(list(fe[c])) for c in cols}
+        if len(set(lengths.values())) > 1:
+            raise InputError(
+                "fe: the columns differ in length ("
+                + ", ".join(f"{c}: {n}" for c, n in lengths.items())
+                + "): each row is one point of a curve"
+            )
         rows = zip(*(list(fe[c]) for c in cols))
         text = ",".join(cols) + "\n" + "".join(
             f"{float(a)!r},{float(b)!r},{float(c)!r},{d}\n" for a, b, c, d in rows

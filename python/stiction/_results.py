@@ -65,6 +65,20 @@ def _attr_name(key: str) -> str:
     return key + "_" if keyword.iskeyword(key) else key
 
 
+def _key_name(attr: str) -> str:
+    """The key of the command's JSON an attribute stands for (`from_` -> `from`)."""
+    if attr.endswith("_") and keyword.iskeyword(attr[:-1]):
+        return attr[:-1]
+    return attr
+
+
+def _cell(v: Any) -> Any:
+    """A table cell as plain data; a NaN float marks a row without the value (the
+    library leaves the key out there, and never writes NaN)."""
+    v = _plain(v)
+    return None if isinstance(v, float) and v != v else v
+
+
 def _plain(v: Any) -> Any:
     """A numpy scalar as its Python value."""
     return v.item() if isinstance(v, np.generic) else v
@@ -285,9 +299,11 @@ class Record:
                 return v.to_dict()
             if isinstance(v, Table):
                 cols = v.to_dict()
-                return [
-                    {k: _plain(c[i]) for k, c in cols.items()} for i in range(len(v))
-                ]
+                rows = []
+                for i in range(len(v)):
+                    row = {k: _cell(c[i]) for k, c in cols.items()}
+                    rows.append({k: x for k, x in row.items() if x is not None})
+                return rows
             if isinstance(v, np.ndarray):
                 return v.tolist()
             if isinstance(v, list):
@@ -298,7 +314,7 @@ class Record:
 
         absent = self.__dict__.get("_absent", ())
         return {
-            k: plain(v)
+            _key_name(k): plain(v)
             for k, v in self.__dict__.items()
             if not k.startswith("_") and not (k in absent and v is None)
         }
@@ -514,7 +530,20 @@ class SwitchResult(Record):
             }
             for c in self.cycles
         ]
-        return Table.from_rows(rows) if rows else Table({})
+        if rows:
+            return Table.from_rows(rows)
+        # no cycle (the switch does not close): the scalar columns, empty
+        scalar = (int, float, bool, str)
+        hints = Cycle._hints()
+        return Table(
+            {
+                k: np.zeros(0, dtype=bool if t is bool else int if t is int else float)
+                if t in (int, float, bool)
+                else np.asarray([], dtype=str)
+                for k, t in hints.items()
+                if t in scalar
+            }
+        )
 
 
 # ---------------------------------------------------------------- surface
@@ -651,7 +680,7 @@ class DesignMap(Record):
         object.__setattr__(self, "_native", native)
 
     def keys(self) -> List[str]:
-        return [k for k in self.__dict__ if k != "_native"]
+        return [k for k in self.__dict__ if not k.startswith("_")]
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, DesignMap):
@@ -865,7 +894,7 @@ class ProbabilityResult(Record):
         object.__setattr__(self, "_native", native)
 
     def keys(self) -> List[str]:
-        return [k for k in self.__dict__ if k != "_native"]
+        return [k for k in self.__dict__ if not k.startswith("_")]
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, ProbabilityResult):
@@ -962,6 +991,14 @@ class LawResult(Record):
     summary: Table  #: per history: d_min, start_pressure, pull_out_d, pull_out_pressure, ...
     warnings: List[ModelWarning]
     law: Any  #: the tabulated law (stiction.ContactLaw)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The summary as plain data, equal to ``stiction law --format json``; the law itself
+        (``law``, a :class:`stiction.ContactLaw`) is left out: ``law.to_json()`` is its
+        law.json."""
+        d = super().to_dict()
+        d.pop("law", None)
+        return d
 
 
 class LawEvaluation(Record):

@@ -75,3 +75,9 @@ def test_bad_data_and_selections_are_input(tmp_path, start_scene, fe_columns):
         stiction.calibrate(start_scene, fe_columns, fit="c3")
     with pytest.raises(stiction.InputError, match="branch"):
         stiction.calibrate(start_scene, {"delta_max_m": [1e-8], "delta_m": [1e-9], "force_n": [1e-6]})
+    # columns of unequal length would be cut to the shortest and misaligned (a fit that
+    # "converges" on wrong rows): refused with each column's length
+    short = {k: list(v) for k, v in fe_columns.items()}
+    short["force_n"] = short["force_n"][:-1]
+    with pytest.raises(stiction.InputError, match="differ in length"):
+        stiction.calibrate(start_scene, short)

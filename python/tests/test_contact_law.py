@@ -28,6 +28,11 @@ def test_the_tabulation_summary():
     assert np.allclose(r.law.d_min_grid, np.linspace(5e-9, 9e-9, 6), rtol=1e-12)
     assert r.summary.d_min.shape == (6,) and (r.summary.pull_out_pressure < 0).all()
     assert r.law.length_scale == r.sigma_s == 7.78e-9
+    # as data: the summary alone, JSON-ready (the law's own JSON is r.law.to_json())
+    import json
+
+    d = r.to_dict()
+    assert "law" not in d and json.loads(json.dumps(d))["branches"] == 6
 
 
 POINTS = [
@@ -85,6 +90,13 @@ def test_follow_walks_a_history(law_file):
     # the retraction follows the retract branch of the deepest point
     back = law.evaluate(d[30:], 6e-9, "retract")
     assert np.array_equal(e.pressure[31:], back.pressure[1:])
+    # the state as returned continues the walk; a key it does not have (`path` for
+    # `retract`) would be ignored and the law followed from another history: refused
+    first, mid = law.follow(d[:30])
+    rest, _ = law.follow(d[30:], mid)
+    assert np.array_equal(np.concatenate([first.pressure, rest.pressure]), e.pressure)
+    with pytest.raises(stiction.InputError, match="path"):
+        law.follow(1e-8, {"d_min": 6e-9, "path": "retract"})
 
 
 def test_laws_round_trip_bit_for_bit(tmp_path, law_file):

@@ -97,7 +97,6 @@ def test_the_threshold_is_the_command_lines(cli, paper_switch):
         "--accuracy", "fast", "--format", "json",
     )
     got = t.to_dict()
-    got["from"] = got.pop("from_")
     got.pop("warnings")
     assert got == expected
     assert t.critical_value == pytest.approx(4.494e-8, rel=1e-3) and t.free_side == "above"

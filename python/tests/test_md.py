@@ -113,3 +113,19 @@ def test_bad_arguments_raise_input_error():
         stiction.maugis_kim_force(0.5, 0.1, "retract")
     with pytest.raises(stiction.InputError, match="path"):
         stiction.maugis_kim_force(0.5, 0.1, "sideways")
+
+
+def test_the_curve_as_data_is_the_command_lines_json(cli):
+    # the key `lambda` (attribute lambda_) and no `s` on the non-contact branch, as the
+    # command writes it: to_dict() is the command's JSON, never a NaN
+    expected = cli.json("md", "--lambda", "0.5", "--points", "50")
+    assert stiction.md_curve(0.5, points=50).to_dict() == expected
+
+
+def test_a_retraction_deeper_than_its_excursion_is_refused_as_the_command_line_does():
+    with pytest.raises(stiction.InputError, match="excursion"):
+        stiction.maugis_kim_force(0.5, 3.0, "retract", from_=1.0)
+    with pytest.raises(stiction.InputError, match="excursion"):
+        stiction.maugis_kim_force(0.5, np.array([0.2, 1.5]), "retract", from_=1.0)
+    # at the extreme itself it is the retraction's force
+    assert stiction.maugis_kim_force(0.5, 1.0, "retract", from_=1.0) == stiction.maugis_kim_force(0.5, 1.0)

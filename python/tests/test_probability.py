@@ -66,10 +66,13 @@ def test_the_files_are_the_command_lines(cli, spring_scene, two_fields, one_fiel
         "design", "probability", "--scene", scene, "--accuracy", "fast", "--scatter", SPRING,
         "--samples", "30", "--seed", "5", "--format", "json",
     )
-    # (with the validity of the samples, which the command adds to the run's summary)
-    validity = printed.pop("validity")
-    assert validity == {"holds": one_field.validity.holds, "reasons": list(one_field.validity.reasons)}
+    # with the validity of the samples, which the command adds to the run's summary
+    assert printed["validity"] == {"holds": one_field.validity.holds, "reasons": list(one_field.validity.reasons)}
     assert printed == json.loads(one_field.summary_json())
+    assert one_field.summary_json() == cli.run(
+        "design", "probability", "--scene", scene, "--accuracy", "fast", "--scatter", SPRING,
+        "--samples", "30", "--seed", "5", "--format", "json",
+    ).stdout
     for key in ("samples", "stiction_probability", "ci_low", "ci_high", "does_not_close_probability", "outside_validity", "by_cycle"):
         assert key in printed, key
     assert printed["stiction_probability"] == one_field.stiction_probability
@@ -147,7 +150,17 @@ def test_shards_merged_equal_one_run(spring_scene, two_fields, tmp_path):
         p.save(tmp_path / f"part{i}")
     paths = [tmp_path / f"part{i}" / "probability.json" for i in range(2)]
     assert stiction.design_merge(paths) == two_fields
+    # a part's kind is read from the file, whatever its name
+    renamed = [tmp_path / f"p{i}.json" for i in range(2)]
+    for src, dst in zip(paths, renamed):
+        dst.write_bytes(src.read_bytes())
+    assert stiction.design_merge(renamed) == two_fields
     assert stiction.read_probability(paths[1]) == parts[1]
+    # what `--format json` prints: the statistics with the validity, no samples; no
+    # private name among the fields
+    summary = json.loads(two_fields.summary_json())
+    assert "validity" in summary and "points" not in summary
+    assert not any(k.startswith("_") for k in two_fields.keys())
     with pytest.raises(stiction.InputError, match="missing part"):
         stiction.design_merge(paths[:1])
     with pytest.raises(stiction.InputError, match="do not merge"):
