@@ -287,6 +287,47 @@ impl ArrayIn {
         self.values.len()
     }
 
+    /// Refuses a NaN (always) or an infinite value (unless `infinite_allowed`: a history
+    /// that means "virgin") of this argument (`name`), naming the argument and the value:
+    /// a NaN history would otherwise read as a virgin surface.
+    pub fn finite(&self, name: &str, infinite_allowed: bool) -> PyResult<&Self> {
+        if let Some(&v) = self
+            .values
+            .iter()
+            .find(|v| v.is_nan() || (v.is_infinite() && !infinite_allowed))
+        {
+            return Err(crate::errors::argument(
+                name,
+                format!("{v}"),
+                if infinite_allowed {
+                    "a number (inf: none, a virgin history)"
+                } else {
+                    "a finite number"
+                },
+            ));
+        }
+        Ok(self)
+    }
+
+    /// Refuses a retraction point deeper than its excursion's extreme `from` (`deeper`
+    /// says which side is deeper: larger interferences for a sphere or an asperity,
+    /// smaller separations for a surface).
+    pub fn within_excursion(
+        &self,
+        name: &str,
+        from: f64,
+        deeper: fn(f64, f64) -> bool,
+    ) -> PyResult<()> {
+        if let Some(&v) = self.values.iter().find(|&&v| deeper(v, from)) {
+            return Err(crate::errors::argument(
+                name,
+                format!("{v:e}"),
+                format!("within the retraction's excursion from {from:e} (a deeper point is on the approach)"),
+            ));
+        }
+        Ok(())
+    }
+
     /// The value at `i` of an argument that is either one value or one per point of an
     /// array of `n` (checked by [`ArrayIn::broadcast_to`]).
     pub fn at(&self, i: usize) -> f64 {

@@ -225,9 +225,13 @@ impl PyAdhesionLaw {
         from_: Option<f64>,
     ) -> PyResult<Py<PyAny>> {
         let d = ArrayIn::new(delta)?;
+        d.finite("delta", false)?;
         let r = ArrayIn::new(radius)?;
         r.broadcast_to("radius", &d, "delta")?;
         let p = core_path(path, from_, None)?;
+        if let Path::Retract { from } = p {
+            d.within_excursion("delta", from, |v, f| v > f)?;
+        }
         let law = &self.law;
         let f = detach_points(py, d.len(), || {
             par_points(d.len(), |i| {
@@ -323,9 +327,32 @@ impl PyAsperity {
         from_: Option<f64>,
     ) -> PyResult<Py<PyAny>> {
         let d = ArrayIn::new(delta)?;
+        d.finite("delta", false)?;
         let dm = delta_max.map(ArrayIn::new).transpose()?;
         if let Some(m) = &dm {
+            m.finite("delta_max", false)?;
             m.broadcast_to("delta_max", &d, "delta")?;
+        }
+        if path == "retract" {
+            match (from_, &dm) {
+                (Some(f), _) => d.within_excursion("delta", f, |v, f| v > f)?,
+                // retracting from each point's own delta_max
+                (None, Some(m)) => {
+                    for i in 0..d.len() {
+                        if d.values[i] > m.at(i) {
+                            return Err(crate::errors::argument(
+                                "delta",
+                                format!("{:e}", d.values[i]),
+                                format!(
+                                    "at most delta_max = {:e} on a retraction from it (a deeper point is on the approach)",
+                                    m.at(i)
+                                ),
+                            ));
+                        }
+                    }
+                }
+                (None, None) => {}
+            }
         }
         // the path is checked once; a retraction without from_ goes from each delta_max
         let retract = match (path, from_, &dm) {
@@ -365,6 +392,7 @@ impl PyAsperity {
         delta_max: &Bound<'_, PyAny>,
     ) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
         let dm = ArrayIn::new(delta_max)?;
+        dm.finite("delta_max", false)?;
         let a = &self.asperity;
         let res = crate::pool::detach(py, || {
             let idx: Vec<usize> = (0..dm.len()).collect();
@@ -388,6 +416,7 @@ impl PyAsperity {
         delta_max: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let dm = ArrayIn::new(delta_max)?;
+        dm.finite("delta_max", false)?;
         let states: Vec<_> = dm
             .values
             .iter()
@@ -420,6 +449,13 @@ impl PyAsperity {
     /// virgin).
     #[pyo3(signature = (delta_max = None))]
     fn jumps(&self, py: Python<'_>, delta_max: Option<f64>) -> PyResult<(f64, f64)> {
+        if let Some(v) = delta_max.filter(|v| !v.is_finite()) {
+            return Err(crate::errors::argument(
+                "delta_max",
+                format!("{v}"),
+                "a finite number (None: virgin)",
+            ));
+        }
         let hist = delta_max.map_or(AsperityHistory::VIRGIN, |d| AsperityHistory {
             delta_max: d,
         });
@@ -576,6 +612,8 @@ impl PySurface {
                 shape: Vec::new(),
             },
         };
+        d.finite("d", false)?;
+        dm.finite("d_min", true)?;
         let p = self.eval(py, &d, &dm, path, from_, |gw, x, h, p| gw.pressure(x, h, p))?;
         array_out(py, p, &d.shape)
     }
@@ -599,6 +637,8 @@ impl PySurface {
                 shape: Vec::new(),
             },
         };
+        d.finite("d", false)?;
+        dm.finite("d_min", true)?;
         let e = self.eval(py, &d, &dm, path, from_, |gw, x, h, p| {
             gw.pressure_estimate(x, h, p)
         })?;
@@ -618,6 +658,13 @@ impl PySurface {
         from_: Option<f64>,
     ) -> PyResult<f64> {
         let dm = d_min.unwrap_or(f64::INFINITY);
+        if dm.is_nan() {
+            return Err(crate::errors::argument(
+                "d_min",
+                "NaN",
+                "a number (None or inf: a virgin surface)",
+            ));
+        }
         let p = Self::path_at(path, from_, dm)?;
         let gw = &self.gw;
         crate::pool::detach(py, || gw.reach(&surface_history(dm), p))
@@ -629,6 +676,16 @@ impl PySurface {
     /// `pressure` (Pa, the magnitude of the most tensile pressure, >= 0), `separation` (m,
     /// where) and `error` (Pa), by the switch model's search (`switch_1d::unload`).
     fn pull_out<'py>(&self, py: Python<'py>, d_min: f64) -> PyResult<Bound<'py, PyDict>> {
+        // pressed to d_min: within 20 sigma_s of the mean plane, as `stiction surface
+        // --unload-from` (beyond, the Gaussian heights hold no asperity)
+        let lim = 20.0 * self.sigma_s;
+        if !(d_min.is_finite() && d_min.abs() <= lim) {
+            return Err(crate::errors::argument(
+                "d_min",
+                format!("{d_min:e}"),
+                format!("finite and within 20 sigma_s = {lim:e} m of the mean plane"),
+            ));
+        }
         let gw = &self.gw;
         let precision = self.accuracy.precision();
         let u = crate::pool::detach(py, || {

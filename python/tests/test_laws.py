@@ -153,3 +153,31 @@ def test_surface_errors_are_input(surface_run, paper_switch):
         s.pressure(1e-8, path="up")
     with pytest.raises(stiction.InputError, match="accuracy"):
         stiction.Surface(paper_switch, accuracy="quick")
+
+
+def test_histories_and_excursions_that_mean_nothing_are_input(surface_run, asperity_run):
+    # a NaN history read as a virgin surface, a point deeper than the excursion it
+    # retracts from, a press far beyond the heights: each refused, naming the argument
+    scene, _ = surface_run
+    s = stiction.Surface(scene)
+    with pytest.raises(stiction.InputError, match="d_min"):
+        s.pressure(10e-9, d_min=math.nan)
+    with pytest.raises(stiction.InputError, match="d_min"):
+        s.reach(math.nan)
+    for bad in (math.nan, -1.0):
+        with pytest.raises(stiction.InputError, match="d_min"):
+            s.pull_out(bad)
+    a = stiction.Asperity(asperity_run[0])
+    with pytest.raises(stiction.InputError, match="delta_max"):
+        a.force(1e-9, math.nan)
+    with pytest.raises(stiction.InputError, match="delta_max"):
+        a.pull_off(math.nan)
+    with pytest.raises(stiction.InputError, match="delta_max"):
+        a.state(math.nan)
+    with pytest.raises(stiction.InputError, match="delta = inf"):
+        a.force(math.inf)
+    with pytest.raises(stiction.InputError, match="deeper point is on the approach"):
+        a.force(40e-9, 34e-9, "retract")
+    law = stiction.AdhesionLaw.of_scene(asperity_run[0])
+    with pytest.raises(stiction.InputError, match="deeper point is on the approach"):
+        law.force(2e-9, 4e-6, "retract", from_=1e-9)
