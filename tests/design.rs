@@ -898,3 +898,47 @@ fn law_map_shards_merge_and_parts_with_other_words_are_refused() {
         "nothing is written when merge refuses"
     );
 }
+
+/// A design runs a switch scene: another kind is said to be one, not reported by the
+/// first key a switch does not take (`unknown key unload_from`, the QA case of the tenth
+/// stop).
+#[test]
+fn a_design_of_a_surface_scene_says_it_needs_a_switch_scene() {
+    let text = String::from_utf8(stiction(&["scene", "--print", "surface"]).stdout).unwrap();
+    let s = file("design-surface-scene", &text);
+    for args in [
+        vec![
+            "design",
+            "threshold",
+            "--scene",
+            &s,
+            "--vary",
+            "surface.sigma_s",
+            "--from",
+            "2e-9",
+            "--to",
+            "1e-8",
+        ],
+        vec![
+            "design",
+            "map",
+            "--scene",
+            &s,
+            "--vary",
+            "surface.sigma_s=2e-9:1e-8:log:3",
+            "--out",
+            "/nonexistent/never",
+        ],
+    ] {
+        let err = fails(
+            &stiction(&args),
+            2,
+            &[
+                "invalid --scene",
+                "a surface scene",
+                "a design runs a switch scene",
+            ],
+        );
+        assert!(!err.contains("unload_from"), "{err}");
+    }
+}

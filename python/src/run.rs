@@ -110,7 +110,10 @@ pub fn calibrate(
             CalibError::Selection { reason, .. } => reason,
             other => other.to_string(),
         };
-        argument("fit", format!("\"{fit}\""), reason)
+        crate::errors::raise(ModelError::Option {
+            name: "fit".into(),
+            message: format!("\"{fit}\": {reason}"),
+        })
     })?;
     let fe_file = match &fe {
         Some(p) => p.display().to_string(),

@@ -57,6 +57,20 @@ from ._results import (
 )
 from ._stiction import Scene
 
+
+def _count(name: str, value: Any, least: int) -> int:
+    """An integer argument (not a bool, not a float), at least `least`, or InputError."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
+        raise InputError(f"invalid {name} = {value!r}: must be an integer >= {least}")
+    return int(value)
+
+
+def _word(name: str, value: Any) -> Optional[str]:
+    """A word argument (or None), or InputError naming it."""
+    if value is not None and not isinstance(value, str):
+        raise InputError(f"invalid {name} = {value!r}: must be a word (a str) or None")
+    return value
+
 __version__: str = _stiction.__version__
 
 __all__ = [
@@ -146,7 +160,7 @@ def run(scene: SceneLike, accuracy: Optional[str] = None) -> Union[SwitchResult,
 
     `accuracy` ("accurate" | "balanced" | "fast" | "reference") replaces the scene's, as
     ``--accuracy`` does."""
-    kind, data = _stiction.run(scene, accuracy)
+    kind, data = _stiction.run(scene, _word("accuracy", accuracy))
     return _RESULTS[kind](data)
 
 
@@ -185,7 +199,7 @@ def md_curve(lam: float, points: int = 200, delta_end: float = 5.0) -> MdResult:
     """The whole nondimensional Maugis-Kim curve of lambda = `lam` with `points` points up
     to Delta = `delta_end`, and its landmarks (jump-in, turning point, both pull-offs),
     as ``stiction md --lambda LAM``."""
-    return MdResult(_stiction.md_curve(lam, points, delta_end))
+    return MdResult(_stiction.md_curve(lam, _count("points", points, 0), delta_end))
 
 
 def design_threshold(
@@ -203,7 +217,9 @@ def design_threshold(
     or ``"real_contact_fraction>0.01"``) adds a second requirement, as ``--require``: the
     result's ``requirement`` has its crossings and the ``window`` of values where the
     switch is free of stiction and meets it."""
-    return ThresholdResult(_stiction.design_threshold(scene, vary, from_, to, accuracy, require))
+    return ThresholdResult(
+        _stiction.design_threshold(scene, vary, from_, to, _word("accuracy", accuracy), _word("require", require))
+    )
 
 
 def _design_map(native: Any) -> DesignMap:
@@ -239,7 +255,9 @@ def design_map(
     ``--require``."""
     vary_list = [vary] if isinstance(vary, str) else list(vary)
     if client is None:
-        return _design_map(_stiction.design_map(scene, vary_list, accuracy, shard, require))
+        return _design_map(
+            _stiction.design_map(scene, vary_list, _word("accuracy", accuracy), _word("shard", shard), _word("require", require))
+        )
     from ._dask import map_on_client
 
     return _design_map(map_on_client(client, scene, vary_list, accuracy, shard, require))
@@ -337,12 +355,12 @@ def design_probability(
         _stiction.design_probability(
             scene,
             scatter_list,
-            samples,
-            seed,
+            _count("samples", samples, 1),
+            _count("seed", seed, 0),
             correlate_list,
             confidence,
-            accuracy,
-            shard,
+            _word("accuracy", accuracy),
+            _word("shard", shard),
             target_halfwidth,
             exact,
         )
@@ -368,7 +386,9 @@ def tabulate_law(
     per branch; `tolerance` on |p_table - p_surface| / (|p_surface| + |p_pull_out|);
     `accuracy` of the surface evaluations (default fast). ``result.law`` is the
     :class:`ContactLaw` (``.save(path)`` writes law.json)."""
-    data, native = _stiction.tabulate_law(scene, d_min, points, tolerance, accuracy)
+    data, native = _stiction.tabulate_law(
+        scene, _word("d_min", d_min), _count("points", points, 1), tolerance, _word("accuracy", accuracy)
+    )
     data["law"] = ContactLaw(native)
     return LawResult(data)
 

@@ -90,3 +90,25 @@ def test_result_classes_declare_units():
     src = pathlib.Path(stiction.__file__).with_name("_results.py").read_text()
     for field in ("d_e: float  #: end-of-impact separation (m)", "pull_out_pressure: float  #: pull-out pressure (Pa"):
         assert field in src
+
+
+def test_arguments_of_the_wrong_type_are_input_errors_naming_them(paper_switch):
+    # never a bare OverflowError or TypeError, never a bool read as a count
+    for kwargs, name in (
+        ({"seed": -1}, "seed"),
+        ({"samples": -1}, "samples"),
+        ({"samples": True}, "samples"),
+        ({"samples": 10.5}, "samples"),
+        ({"accuracy": 3}, "accuracy"),
+    ):
+        with pytest.raises(stiction.InputError, match=name):
+            stiction.design_probability(paper_switch, "surface.sigma_s=lognormal(7.78e-9,1.1)", **kwargs)
+    with pytest.raises(stiction.InputError, match="accuracy"):
+        stiction.run(paper_switch, accuracy=3)
+    with pytest.raises(stiction.InputError, match="points"):
+        stiction.md_curve(0.5, points=10.5)
+    with pytest.raises(stiction.InputError, match="fit") as e:
+        stiction.calibrate(stiction.Scene.paper("asperity"), {"delta_max_m": [], "delta_m": [], "force_n": [], "branch": []}, fit="zz")
+    assert "must be unknown" not in str(e.value)
+    with pytest.raises(stiction.InputError, match="a design runs a switch scene"):
+        stiction.design_map(stiction.Scene.paper("surface"), ["surface.sigma_s=2e-9:1e-8:log:2"])

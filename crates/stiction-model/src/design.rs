@@ -57,6 +57,21 @@ struct GuardTally {
 /// accommodated (capped by the scene's `cycles`), no curves, no elastic comparison, and
 /// `accuracy` if given.
 pub fn design_scene(scene: &Scene, accuracy: Option<Accuracy>) -> Result<Scene, ModelError> {
+    // a design varies a switch: another kind of scene is said to be one, not reported by
+    // the first key a switch does not take
+    match scene.kind() {
+        Ok(Kind::Switch) | Err(_) => {}
+        Ok(other) => {
+            return Err(ModelError::Option {
+                name: "scene".into(),
+                message: format!(
+                    "{}: a {} scene; a design runs a switch scene (its [switch] section, with its drive)",
+                    scene.file(),
+                    other
+                ),
+            })
+        }
+    }
     let mut s = scene.clone();
     s.set("until_accommodated", toml::Value::Boolean(true))?;
     s.set("points", toml::Value::Integer(0))?;
