@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import keyword
 import typing
-from typing import Any, ClassVar, Dict, Iterator, List, Mapping, Optional, Union
+from typing import Any, ClassVar, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -82,6 +82,46 @@ def _cell(v: Any) -> Any:
 def _plain(v: Any) -> Any:
     """A numpy scalar as its Python value."""
     return v.item() if isinstance(v, np.generic) else v
+
+
+
+def _write_folder(folder: Any, files: Sequence[Tuple[str, str]]) -> None:
+    """Writes `files` (name, text) into `folder` (made if missing) as the command line's
+    ``--out`` does: each file whole (a hidden temporary beside it, renamed over it, so never
+    half-written), and nothing written where a name is held by something other than a
+    regular file (a symbolic link, a FIFO, a device, a folder), which is refused naming it
+    before anything is written."""
+    import os
+    import stat
+
+    from ._errors import InputError
+
+    folder = os.fspath(folder)
+    os.makedirs(folder, exist_ok=True)
+    for name, _ in files:
+        path = os.path.join(folder, name)
+        try:
+            st = os.lstat(path)
+        except FileNotFoundError:
+            continue
+        if not stat.S_ISREG(st.st_mode):
+            what = (
+                "a symbolic link" if stat.S_ISLNK(st.st_mode)
+                else "a FIFO" if stat.S_ISFIFO(st.st_mode)
+                else "a folder" if stat.S_ISDIR(st.st_mode)
+                else "a device or socket"
+            )
+            raise InputError(f"cannot write {path}: {what} is there (an output replaces only a regular file)")
+    for name, text in files:
+        path = os.path.join(folder, name)
+        tmp = os.path.join(folder, f".{name}.tmp-{os.getpid()}")
+        try:
+            with open(tmp, "w", encoding="utf-8") as f:
+                f.write(text)
+            os.replace(tmp, path)
+        finally:
+            if os.path.exists(tmp):
+                os.remove(tmp)
 
 
 class Table:
@@ -723,13 +763,9 @@ class DesignMap(Record):
         return self._native.to_svg()
 
     def save(self, folder: Any) -> None:
-        """Writes map.json, map.csv and map.svg to `folder` (made if missing)."""
-        import os
-
-        os.makedirs(folder, exist_ok=True)
-        for name, text in (("map.json", self.to_json()), ("map.csv", self.to_csv()), ("map.svg", self.to_svg())):
-            with open(os.path.join(folder, name), "w", encoding="utf-8") as f:
-                f.write(text)
+        """Writes map.json, map.csv and map.svg to `folder` (made if missing), each file
+        whole; a name held by a symbolic link, a FIFO or a device is refused (InputError)."""
+        _write_folder(folder, (("map.json", self.to_json()), ("map.csv", self.to_csv()), ("map.svg", self.to_svg())))
 
 
 class ThresholdResult(Record):
@@ -941,12 +977,7 @@ class ProbabilityResult(Record):
     def save(self, folder: Any) -> None:
         """Writes probability.json and samples.csv to `folder` (made if missing): a folder
         ``stiction design merge`` reads (the plot, probability.svg, is the command's)."""
-        import os
-
-        os.makedirs(folder, exist_ok=True)
-        for name, text in (("probability.json", self.to_json()), ("samples.csv", self.to_csv())):
-            with open(os.path.join(folder, name), "w", encoding="utf-8") as f:
-                f.write(text)
+        _write_folder(folder, (("probability.json", self.to_json()), ("samples.csv", self.to_csv())))
 
 
 # ---------------------------------------------------------------- contact law

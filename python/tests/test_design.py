@@ -246,3 +246,29 @@ def test_a_law_axis_on_a_process_pool_and_its_shards(law_scene, law_map):
 def test_the_dask_map_carries_the_words(dask_client, law_scene, law_map):
     m = stiction.design_map(law_scene, LAW_VARY, accuracy="fast", client=dask_client)
     assert m.to_json() == law_map.to_json()
+
+
+def test_save_writes_whole_files_and_never_through_a_link_or_into_a_fifo(tmp_path, local_map):
+    # as the command's --out: a name held by a symbolic link or a FIFO is refused before
+    # anything is written (the link's target untouched), a regular file is replaced whole
+    import os
+
+    out = tmp_path / "out"
+    out.mkdir()
+    target = tmp_path / "precious.txt"
+    target.write_text("precious")
+    os.symlink(target, out / "map.json")
+    with pytest.raises(stiction.InputError, match="symbolic link"):
+        local_map.save(out)
+    assert target.read_text() == "precious" and not (out / "map.csv").exists()
+    fifo_dir = tmp_path / "fifo"
+    fifo_dir.mkdir()
+    os.mkfifo(fifo_dir / "map.csv")
+    with pytest.raises(stiction.InputError, match="FIFO"):
+        local_map.save(fifo_dir)
+    fine = tmp_path / "fine"
+    fine.mkdir()
+    (fine / "map.json").write_text("old")
+    local_map.save(fine)
+    assert (fine / "map.json").read_text() == local_map.to_json()
+    assert sorted(p.name for p in fine.iterdir()) == ["map.csv", "map.json", "map.svg"]
