@@ -443,6 +443,20 @@ class Laws(Record):
     reload: str  #: reload rule (as_printed | bounded)
 
 
+
+def _laws_of_scene(scene: Mapping[str, Any]) -> "Laws":
+    """The laws and modelling choices a resolved scene echo states (its contact section)."""
+    c = scene.get("contact", {}) if isinstance(scene, Mapping) else {}
+    return Laws(
+        {
+            "adhesion": c.get("adhesion_law"),
+            "plasticity": c.get("plasticity_law"),
+            "yield_modulus": c.get("yield_modulus"),
+            "reload": c.get("reload"),
+        }
+    )
+
+
 class Targets(Record):
     """An accuracy mode and what it promises."""
 
@@ -719,6 +733,12 @@ class DesignMap(Record):
         super().__init__(data)
         object.__setattr__(self, "_native", native)
 
+    @property
+    def laws(self) -> Laws:
+        """The base scene's laws and modelling choices (from its ``scene`` echo; a map axis
+        may vary one of them point by point)."""
+        return _laws_of_scene(self.scene)
+
     def keys(self) -> List[str]:
         return [k for k in self.__dict__ if not k.startswith("_")]
 
@@ -928,6 +948,12 @@ class ProbabilityResult(Record):
     def __init__(self, data: Mapping[str, Any], native: Any = None) -> None:
         super().__init__(data)
         object.__setattr__(self, "_native", native)
+
+    @property
+    def laws(self) -> Laws:
+        """The base scene's laws and modelling choices (from its ``scene`` echo; a map axis
+        may vary one of them point by point)."""
+        return _laws_of_scene(self.scene)
 
     def keys(self) -> List[str]:
         return [k for k in self.__dict__ if not k.startswith("_")]

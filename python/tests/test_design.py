@@ -272,3 +272,6 @@ def test_save_writes_whole_files_and_never_through_a_link_or_into_a_fifo(tmp_pat
     local_map.save(fine)
     assert (fine / "map.json").read_text() == local_map.to_json()
     assert sorted(p.name for p in fine.iterdir()) == ["map.csv", "map.json", "map.svg"]
+    # the base scene's modelling choices, as every result states them
+    assert local_map.laws.yield_modulus == local_map.scene["contact"]["yield_modulus"]
+    assert local_map.laws.adhesion == "maugis_kim" and "laws" not in local_map.to_dict()
