@@ -42,9 +42,9 @@ pub fn accuracy_arg(accuracy: Option<&str>) -> PyResult<Option<stiction_model::A
 }
 
 enum Ran {
-    Asperity(asperity::AsperityResult),
-    Surface(surface::SurfaceResult),
-    Switch(stiction_model::switch::SwitchResult),
+    Asperity(Box<asperity::AsperityResult>),
+    Surface(Box<surface::SurfaceResult>),
+    Switch(Box<stiction_model::switch::SwitchResult>),
 }
 
 /// Runs a scene of any kind: `(kind, result)` with the result of `stiction asperity`,
@@ -59,9 +59,9 @@ pub fn run(
     let scene = with_accuracy(scene_from_py(scene)?, accuracy)?;
     let ran = crate::pool::detach(py, move || -> Result<Ran, ModelError> {
         Ok(match Spec::new(&scene, &registry())? {
-            Spec::Asperity(s) => Ran::Asperity(asperity::run(&s)?),
-            Spec::Surface(s) => Ran::Surface(surface::run(&s)?),
-            Spec::Switch(s) => Ran::Switch(SwitchModel::build(&s)?.run(&Silent)?),
+            Spec::Asperity(s) => Ran::Asperity(Box::new(asperity::run(&s)?)),
+            Spec::Surface(s) => Ran::Surface(Box::new(surface::run(&s)?)),
+            Spec::Switch(s) => Ran::Switch(Box::new(SwitchModel::build(&s)?.run(&Silent)?)),
             _ => {
                 return Err(ModelError::argument(
                     "scene",
