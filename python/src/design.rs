@@ -299,16 +299,7 @@ pub fn design_point(
 
 /// A guard's code as the library spells it (`&'static str`).
 fn static_code(c: &str) -> &'static str {
-    const KNOWN: [&str; 7] = [
-        code::ADHESION_YIELDS,
-        code::BEYOND_FIT_RANGE,
-        code::ABOVE_HARDNESS,
-        code::ABOVE_STRENGTH,
-        code::NON_DEEPENING,
-        code::HOLD_DEEPER_THAN_IMPACT,
-        code::DENSE_CONTACT_SPOTS,
-    ];
-    match KNOWN.iter().find(|k| **k == c) {
+    match code::ALL.iter().find(|k| **k == c) {
         Some(k) => k,
         // a code this build does not know (a newer worker): kept, once per distinct code
         None => Box::leak(c.to_string().into_boxed_str()),

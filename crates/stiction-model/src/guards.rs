@@ -41,6 +41,17 @@ pub mod code {
     /// A value derived for a scene (a topography's GW parameters) outside the domain the
     /// scene key accepts: left out of the fragment written.
     pub const OUTSIDE_SCENE_DOMAIN: &str = "outside_scene_domain";
+    /// Every code above.
+    pub const ALL: [&str; 8] = [
+        ADHESION_YIELDS,
+        BEYOND_FIT_RANGE,
+        ABOVE_HARDNESS,
+        ABOVE_STRENGTH,
+        NON_DEEPENING,
+        HOLD_DEEPER_THAN_IMPACT,
+        DENSE_CONTACT_SPOTS,
+        OUTSIDE_SCENE_DOMAIN,
+    ];
 }
 
 /// A physics guard raised by a run: the model is used where it leaves its ground.
@@ -336,16 +347,7 @@ mod tests {
         assert!(v.words().starts_with("outside the model's validity: "));
         assert!(Validity::of(&w[1..2]).holds);
         // every code the guards raise reads as words, never as the code itself
-        for c in [
-            code::ADHESION_YIELDS,
-            code::BEYOND_FIT_RANGE,
-            code::ABOVE_HARDNESS,
-            code::ABOVE_STRENGTH,
-            code::NON_DEEPENING,
-            code::HOLD_DEEPER_THAN_IMPACT,
-            code::DENSE_CONTACT_SPOTS,
-            code::OUTSIDE_SCENE_DOMAIN,
-        ] {
+        for c in code::ALL {
             let words = Validity::of(&[Warning::invalid(c, "x".into())]).words();
             assert!(!words.contains(c), "{words}");
         }

@@ -577,7 +577,7 @@ impl<'a> Reader<'a> {
         // a key or section no scene of this kind takes (a misspelt section such as
         // [switchx], a value where a section belongs) explains the missing key better than
         // the missing key does: it is reported first
-        if let Err(unknown) = self.check_foreign(self.scene.tree(), "") {
+        if let Err(unknown) = self.check_table(self.scene.tree(), "", true) {
             return unknown;
         }
         let k = keys::key(key);
@@ -1281,60 +1281,36 @@ impl<'a> Reader<'a> {
         })
     }
 
-    /// Refuses a key of `t` (at `prefix`) that no scene of this kind takes at all, whether
-    /// read yet or not: what [`Self::check_table`] refuses at the end, less the keys still
-    /// to be read and the law-parameter tables (which their laws check).
-    fn check_foreign(&self, t: &toml::Table, prefix: &str) -> Result<(), SceneError> {
-        for (k, v) in t {
-            let key = if prefix.is_empty() {
-                k.clone()
-            } else {
-                format!("{prefix}.{k}")
-            };
-            if self.used.contains(&key)
-                || keys::of(self.kind).any(|f| f.key == key)
-                || [
-                    "contact.adhesion",
-                    "contact.plasticity",
-                    "contact.effective_radius",
-                ]
-                .contains(&key.as_str())
-            {
-                continue;
-            }
-            let is_section =
-                v.is_table() && keys::of(self.kind).any(|f| f.key.starts_with(&format!("{key}.")));
-            if is_section {
-                self.check_foreign(v.as_table().expect("a table"), &key)?;
-                continue;
-            }
-            // the end-of-run check words the refusal (its hint lists the section's keys)
-            let mut one = toml::Table::new();
-            one.insert(k.clone(), v.clone());
-            return self.check_table(&one, prefix);
-        }
-        Ok(())
-    }
-
     /// Refuses any key of the scene that this kind does not take.
     fn finish(&self) -> Result<(), SceneError> {
-        self.check_table(self.scene.tree(), "")
+        self.check_table(self.scene.tree(), "", false)
     }
 
-    fn check_table(&self, t: &toml::Table, prefix: &str) -> Result<(), SceneError> {
+    /// Refuses a key of `t` (at `prefix`) that no scene of this kind takes; `early`: while
+    /// the scene is still being read, so a key this kind takes (read or not yet) and the
+    /// law-parameter tables (which their laws check) pass.
+    fn check_table(&self, t: &toml::Table, prefix: &str, early: bool) -> Result<(), SceneError> {
         for (k, v) in t {
             let key = if prefix.is_empty() {
                 k.clone()
             } else {
                 format!("{prefix}.{k}")
             };
-            if self.used.contains(&key) {
+            let known_now = early
+                && (keys::of(self.kind).any(|f| f.key == key)
+                    || [
+                        "contact.adhesion",
+                        "contact.plasticity",
+                        "contact.effective_radius",
+                    ]
+                    .contains(&key.as_str()));
+            if self.used.contains(&key) || known_now {
                 continue;
             }
             let is_section =
                 v.is_table() && keys::of(self.kind).any(|f| f.key.starts_with(&format!("{key}.")));
             if is_section {
-                self.check_table(v.as_table().expect("a table"), &key)?;
+                self.check_table(v.as_table().expect("a table"), &key, early)?;
                 continue;
             }
             let known: Vec<&str> = keys::of(self.kind).map(|f| f.key).collect();
