@@ -185,13 +185,6 @@ def maugis_kim_force(
         if from_ is not None and from_ != delta_max:
             raise InputError(f"from_ = {from_!r} and delta_max = {delta_max!r}: give one (they name the same value)")
         from_ = delta_max
-    if path == "retract" and from_ is not None:
-        deepest = np.max(np.asarray(delta, dtype=float)) if np.size(delta) else -np.inf
-        if deepest > from_:
-            raise InputError(
-                f"delta = {deepest!r}: at most the excursion's extreme from_ = {from_!r} on a "
-                "retraction (a deeper point is on the approach), as `stiction md` says"
-            )
     return _stiction.maugis_kim_force(lam, delta, path, from_)
 
 

@@ -97,20 +97,6 @@ fn check_delta(name: &str, v: f64) -> Result<f64, ModelError> {
 
 /// The force at `delta` on `path`.
 pub fn point(lambda: f64, delta: f64, path: Path) -> Result<MdPointResult, ModelError> {
-    // retracting, the interference stays at or below the excursion's extreme: a deeper
-    // point is on the approach (its force would be labelled a retraction's)
-    if let Path::Retract { from } = path {
-        if delta > from {
-            return Err(ModelError::argument(
-                "delta",
-                num(delta),
-                format!(
-                    "at most the excursion's extreme from = {} on a retraction (a deeper point is on the approach)",
-                    num(from)
-                ),
-            ));
-        }
-    }
     let c = curve_for(lambda)?;
     let force = forces(&c, &[delta], path)?[0];
     let (name, from) = match path {
@@ -131,6 +117,18 @@ pub fn point(lambda: f64, delta: f64, path: Path) -> Result<MdPointResult, Model
 pub fn forces(curve: &MdCurve, deltas: &[f64], path: Path) -> Result<Vec<f64>, ModelError> {
     if let Path::Retract { from } = path {
         check_delta("from", from)?;
+        // retracting, the interference stays at or below the excursion's extreme: a
+        // deeper point is on the approach (its force would be labelled a retraction's)
+        if let Some(&delta) = deltas.iter().find(|&&d| d > from) {
+            return Err(ModelError::argument(
+                "delta",
+                num(delta),
+                format!(
+                    "at most the excursion's extreme from = {} on a retraction (a deeper point is on the approach)",
+                    num(from)
+                ),
+            ));
+        }
     }
     deltas
         .iter()
