@@ -71,15 +71,24 @@ pub fn main_with<I: IntoIterator<Item = OsString>>(args: I, registry: &LawRegist
     let cli = match Cli::try_parse_from(args) {
         Ok(c) => c,
         Err(e) => {
-            // help and version go to stdout (status 0 unless it cannot be written),
-            // usage errors to stderr (status 2)
+            // help and version go to stdout (status 0; a closed pipe is no failure, any
+            // other write error is reported like a result's: status 2), usage errors to
+            // stderr (status 2)
             let printed = e.print();
-            return if e.use_stderr() {
-                2
-            } else if printed.is_err() {
-                1
-            } else {
-                0
+            if e.use_stderr() {
+                return 2;
+            }
+            return match printed {
+                Ok(()) => 0,
+                Err(source) if source.kind() == std::io::ErrorKind::BrokenPipe => 0,
+                Err(source) => {
+                    let e = Error::Write {
+                        path: "standard output".into(),
+                        source,
+                    };
+                    eprintln!("error: {e}");
+                    e.exit_code()
+                }
             };
         }
     };

@@ -425,20 +425,22 @@ impl OutputSet {
         let target = Self::check(&self.dir, self.known)?;
         let shown = &self.dir;
         let parent = parent_of(&target);
-        fs::create_dir_all(&parent).map_err(|e| write_error(&parent, e))?;
+        // errors name the folder the user gave, never the hidden staging folder
+        fs::create_dir_all(&parent).map_err(|e| write_error(shown, e))?;
         let base = base_name(&target);
         sweep_stale(&parent, &base);
         let staging = parent.join(temp_name(&base, "new"));
         let retired = parent.join(temp_name(&base, "old"));
         let guard = Pending::register(vec![staging.clone(), retired.clone()]);
         let result = (|| {
-            fs::create_dir(&staging).map_err(|e| write_error(&staging, e))?;
+            fs::create_dir(&staging).map_err(|e| write_error(shown, e))?;
             for (name, bytes) in &self.files {
                 let p = staging.join(name);
-                let mut f = File::create(&p).map_err(|e| write_error(&p, e))?;
+                let named = shown.join(name);
+                let mut f = File::create(&p).map_err(|e| write_error(&named, e))?;
                 f.write_all(bytes)
                     .and_then(|()| f.sync_all())
-                    .map_err(|e| write_error(&p, e))?;
+                    .map_err(|e| write_error(&named, e))?;
             }
             // the two renames as one step for an interruption: the handler waits for the
             // lock and finds either the old folder or the new one in place

@@ -516,6 +516,22 @@ fn cases() -> Vec<Case> {
             ],
             code: 2,
         },
+        // eq 13's constants beyond any fit are refused naming the key at validation,
+        // not deep in the surface law
+        scene_case(
+            "effective-radius constant 1e308",
+            "switch",
+            "c1",
+            "c1 = [1e308, 0.6242, 0.092]",
+            &["contact.effective_radius.c1[0]", "= 1e308", "[-1e6, 1e6]"],
+        ),
+        scene_case(
+            "effective-radius constant -1e308",
+            "switch",
+            "c2",
+            "c2 = [10.0, 10.0, -1e308]",
+            &["contact.effective_radius.c2[2]", "= -1e308", "[-1e6, 1e6]"],
+        ),
         // a numerical failure: a sparse, very smooth surface cannot absorb 100 J/m^2
         Case {
             name: "energy the surface cannot absorb",

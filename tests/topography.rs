@@ -269,3 +269,45 @@ fn flat_maps_and_impossible_spacings_are_refused_and_fragments_stay_in_the_scene
         "{fragment}"
     );
 }
+
+/// A map whose heights overflow the analysis (+-1e308 m) exits 2 naming the file and what
+/// overflowed, with nothing on standard output: never a report of null moments and a NaN
+/// sigma_s.
+#[test]
+fn a_map_whose_moments_overflow_is_refused_naming_the_file() {
+    let dir = temp_dir("topography-overflow");
+    let p = dir.join("huge.txt");
+    let rows: Vec<String> = (0..16)
+        .map(|j| {
+            (0..16)
+                .map(|i| {
+                    let k = (i * 7 + j * 13 + i * j) % 5;
+                    format!("{:e}", (k as f64 - 2.0) * 0.5e308)
+                })
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect();
+    std::fs::write(
+        &p,
+        format!(
+            "# spacing = 10 nm\n# height_unit = m\n{}\n",
+            rows.join("\n")
+        ),
+    )
+    .unwrap();
+    for format in ["table", "json"] {
+        let o = stiction(&["topography", p.to_str().unwrap(), "--format", format]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{format}: {err}");
+        assert!(
+            err.contains("huge.txt") && err.contains("overflow"),
+            "{err}"
+        );
+        assert!(
+            o.stdout.is_empty(),
+            "{}",
+            String::from_utf8_lossy(&o.stdout)
+        );
+    }
+}

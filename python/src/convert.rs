@@ -197,7 +197,15 @@ pub fn py_to_json(obj: &Bound<'_, PyAny>, file: &str, at: &str) -> PyResult<Valu
     if obj.is_instance_of::<PyInt>() {
         return match obj.extract::<i64>() {
             Ok(i) => Ok(Value::from(i)),
-            Err(_) => Ok(float_value(obj.extract::<f64>()?)),
+            // beyond i64 as a float (refused by the key's domain); beyond any float (an
+            // OverflowError of Python's) refused here, naming the key
+            Err(_) => match obj.extract::<f64>() {
+                Ok(x) => Ok(float_value(x)),
+                Err(_) => Err(bad(format!(
+                    "an integer of {} bits (beyond any number)",
+                    obj.call_method0("bit_length")?.extract::<u64>()?
+                ))),
+            },
         };
     }
     if obj.is_instance_of::<PyFloat>() {

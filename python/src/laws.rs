@@ -15,7 +15,7 @@ use stiction_model::contact_core::{
 use stiction_model::gw_surface::GwHistory;
 use stiction_model::laws::DynAdhesion;
 use stiction_model::maugis_kim::{Dmt, DugdaleParams, Hertz, Jkr, JkrParams, MaugisKim};
-use stiction_model::spec::{Asperity, RoughSurface, Spec};
+use stiction_model::spec::{check_delta_max, Asperity, RoughSurface, Spec};
 use stiction_model::switch::rough_surface;
 use stiction_model::{md, Accuracy, ModelError};
 
@@ -273,6 +273,16 @@ pub struct PyAsperity {
 }
 
 impl PyAsperity {
+    /// Every value of `delta_max` in the asperity scene's domain of `delta_max`, (0, 1e3
+    /// radius]: the model library's check, shared with the scenes.
+    fn check_delta_max(&self, delta_max: &ArrayIn) -> PyResult<()> {
+        let radius = self.asperity.radius();
+        for &x in &delta_max.values {
+            check_delta_max("delta_max", x, radius).or_raise()?;
+        }
+        Ok(())
+    }
+
     fn history(delta_max: Option<&ArrayIn>, i: usize) -> AsperityHistory {
         match delta_max {
             Some(a) => AsperityHistory { delta_max: a.at(i) },
@@ -331,6 +341,7 @@ impl PyAsperity {
         let dm = delta_max.map(ArrayIn::new).transpose()?;
         if let Some(m) = &dm {
             m.finite("delta_max", false)?;
+            self.check_delta_max(m)?;
             m.broadcast_to("delta_max", &d, "delta")?;
         }
         if path == "retract" {
@@ -393,6 +404,7 @@ impl PyAsperity {
     ) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
         let dm = ArrayIn::new(delta_max)?;
         dm.finite("delta_max", false)?;
+        self.check_delta_max(&dm)?;
         let a = &self.asperity;
         let res = crate::pool::detach(py, || {
             let idx: Vec<usize> = (0..dm.len()).collect();
@@ -417,6 +429,7 @@ impl PyAsperity {
     ) -> PyResult<Bound<'py, PyDict>> {
         let dm = ArrayIn::new(delta_max)?;
         dm.finite("delta_max", false)?;
+        self.check_delta_max(&dm)?;
         let states: Vec<_> = dm
             .values
             .iter()
@@ -455,6 +468,9 @@ impl PyAsperity {
                 format!("{v}"),
                 "a finite number (None: virgin)",
             ));
+        }
+        if let Some(v) = delta_max {
+            check_delta_max("delta_max", v, self.asperity.radius()).or_raise()?;
         }
         let hist = delta_max.map_or(AsperityHistory::VIRGIN, |d| AsperityHistory {
             delta_max: d,

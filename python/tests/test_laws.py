@@ -181,3 +181,22 @@ def test_histories_and_excursions_that_mean_nothing_are_input(surface_run, asper
     law = stiction.AdhesionLaw.of_scene(asperity_run[0])
     with pytest.raises(stiction.InputError, match="deeper point is on the approach"):
         law.force(2e-9, 4e-6, "retract", from_=1e-9)
+
+
+def test_asperity_delta_max_has_the_scenes_domain(asperity_run):
+    # delta_max in (0, 1e3 R], as an asperity scene's delta_max: an interference of 1e10 m
+    # (a residual radius of 1e13 m) or 1e308 m (an infinite one) is refused by name
+    a = stiction.Asperity(asperity_run[0])
+    for bad in (1e308, 1e10, 1.001e3 * a.radius, 0.0, -1e-9):
+        with pytest.raises(stiction.InputError, match="delta_max"):
+            a.state(bad)
+        with pytest.raises(stiction.InputError, match="delta_max"):
+            a.pull_off(bad)
+        with pytest.raises(stiction.InputError, match="delta_max"):
+            a.force(1e-9, bad)
+        with pytest.raises(stiction.InputError, match="delta_max"):
+            a.jumps(bad)
+    with pytest.raises(stiction.InputError, match="delta_max"):
+        a.state(np.array([1e-8, 1e308]))
+    st = a.state(1e3 * a.radius)
+    assert math.isfinite(st.r_res) and math.isfinite(st.delta_res)

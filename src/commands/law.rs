@@ -574,6 +574,16 @@ impl EvalCommand {
                     ("standard input".to_string(), t)
                 } else {
                     let name = p.display().to_string();
+                    // the type first: opening a FIFO would wait for a writer (`-` reads
+                    // standard input)
+                    let meta = std::fs::metadata(p)
+                        .map_err(|e| Error::usage("--points-file", format!("{name}: {e}")))?;
+                    if let Some(what) = stiction_model::scene::not_regular(&meta) {
+                        return Err(Error::usage(
+                            "--points-file",
+                            format!("{name}: it is {what}, not a file of points (`-` reads standard input)"),
+                        ));
+                    }
                     let t = std::fs::read_to_string(p)
                         .map_err(|e| Error::usage("--points-file", format!("{name}: {e}")))?;
                     (name, t)

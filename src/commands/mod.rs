@@ -167,12 +167,26 @@ pub struct Outputs {
 }
 
 /// Checks, before any computation, that the outputs can be written: an `--out` folder
-/// holding only `known` files (or absent), a `--plot` path that takes a file.
+/// holding only `known` files (or absent), a `--plot` path that takes a file. `-` is not
+/// taken for standard output (which carries the result itself): it is refused rather than
+/// written as a file named `-`.
 pub fn preflight(out: Option<&Path>, known: &[&str], plot: Option<&Path>) -> Result<(), Error> {
     if let Some(dir) = out {
+        if dir.as_os_str() == "-" {
+            return Err(Error::usage(
+                "--out",
+                "`-`: use a folder name; - (standard output) is not supported for --out",
+            ));
+        }
         OutputSet::check(dir, known)?;
     }
     if let Some(p) = plot {
+        if p.as_os_str() == "-" {
+            return Err(Error::usage(
+                "--plot",
+                "`-`: use a file name; - (standard output) is not supported for --plot",
+            ));
+        }
         output::check_file(p)?;
     }
     Ok(())

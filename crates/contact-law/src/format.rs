@@ -341,6 +341,19 @@ impl ContactLaw {
             path: shown.clone(),
             source,
         };
+        // the type first, from the path: opening a FIFO would wait for a writer, a device
+        // may never end
+        let meta = std::fs::metadata(path).map_err(io)?;
+        if !meta.is_file() {
+            let what = if meta.is_dir() {
+                "a folder"
+            } else {
+                "not a regular file (a FIFO, a device or a socket)"
+            };
+            return Err(io(std::io::Error::other(format!(
+                "it is {what}, not a law file"
+            ))));
+        }
         let file = std::fs::File::open(path).map_err(io)?;
         let mut bytes = Vec::new();
         file.take(MAX_FILE_BYTES + 1)

@@ -32,6 +32,13 @@ pub fn read_fe(path: &Path) -> Result<FeData, CalibError> {
         path: path.display().to_string(),
         source,
     };
+    // the type first, from the path: opening a FIFO would wait for a writer
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if let Some(what) = crate::scene::not_regular(&meta) {
+        return Err(io(std::io::Error::other(format!(
+            "it is {what}, not a finite-element curve file"
+        ))));
+    }
     let file = std::fs::File::open(path).map_err(io)?;
     let mut bytes = Vec::new();
     file.take(MAX_FE_BYTES + 1)

@@ -41,8 +41,15 @@ pub mod code {
     /// A value derived for a scene (a topography's GW parameters) outside the domain the
     /// scene key accepts: left out of the fragment written.
     pub const OUTSIDE_SCENE_DOMAIN: &str = "outside_scene_domain";
+    /// A quantity derived beside the cycles (a contact state, the hold's rest, the elastic
+    /// comparison, a guard's check) that could not be computed: absent from the result,
+    /// the cycles and the verdict kept.
+    pub const NOT_COMPUTED: &str = "side_quantity_not_computed";
+    /// A cycle's reported error estimate (d_e or pull-out) above the accuracy mode's
+    /// target: the result is what the mode could do, not what it promises.
+    pub const ESTIMATE_ABOVE_TARGET: &str = "estimate_above_target";
     /// Every code above.
-    pub const ALL: [&str; 8] = [
+    pub const ALL: [&str; 10] = [
         ADHESION_YIELDS,
         BEYOND_FIT_RANGE,
         ABOVE_HARDNESS,
@@ -51,6 +58,8 @@ pub mod code {
         HOLD_DEEPER_THAN_IMPACT,
         DENSE_CONTACT_SPOTS,
         OUTSIDE_SCENE_DOMAIN,
+        NOT_COMPUTED,
+        ESTIMATE_ABOVE_TARGET,
     ];
 }
 
@@ -130,11 +139,41 @@ impl Validity {
                 code::NON_DEEPENING => "an impact stopped shallower than an earlier one",
                 code::HOLD_DEEPER_THAN_IMPACT => "the hold presses deeper than the impact",
                 code::OUTSIDE_SCENE_DOMAIN => "a derived value lies outside its scene key's domain",
+                code::NOT_COMPUTED => "a quantity beside the cycles could not be computed",
+                code::ESTIMATE_ABOVE_TARGET => {
+                    "an error estimate exceeds the accuracy mode's target"
+                }
                 other => other,
             })
             .collect();
         format!("outside the model's validity: {}", parts.join("; "))
     }
+}
+
+/// `estimate_above_target`: the first cycle whose d_e estimate (m) exceeds the mode's
+/// target times `sigma_s`, or whose pull-out estimate exceeds its target times the larger
+/// of the pull-out and the floor (Pa); each cycle is (number, d_e error, pull-out, its
+/// error). Where a mode cannot reach its target the run says so instead of returning a
+/// number its estimate disowns (issue 41).
+pub fn estimates_within_targets(
+    targets: crate::accuracy::Targets,
+    sigma_s: f64,
+    floor: f64,
+    cycles: impl IntoIterator<Item = (usize, f64, f64, f64)>,
+) -> Option<Warning> {
+    let d_e_target = targets.d_e_tolerance_sigma * sigma_s;
+    cycles.into_iter().find_map(|(cycle, d_e_error, pull, pull_error)| {
+        let pull_target = targets.pull_out_tolerance * pull.abs().max(floor);
+        (d_e_error > d_e_target || pull_error > pull_target).then(|| {
+            Warning::note(
+                code::ESTIMATE_ABOVE_TARGET,
+                format!(
+                    "cycle {cycle}: the error estimates ({d_e_error:.3e} m on d_e, {pull_error:.3e} Pa on the pull-out) exceed the {} mode's targets ({d_e_target:.3e} m, {pull_target:.3e} Pa); a tighter mode gives the result to its targets",
+                    targets.mode
+                ),
+            )
+        })
+    })
 }
 
 /// The interference (m) of a virgin elastic asperity in stable adhesive contact under

@@ -67,10 +67,15 @@ impl Scene {
         if text.trim().is_empty() {
             return Err(SceneError::Empty { file: file.into() });
         }
-        let v: serde_json::Value = serde_json::from_str(text).map_err(|e| SceneError::Parse {
-            file: file.into(),
-            message: short_lines(&format!("JSON parse error: {e}")),
-        })?;
+        // a key given twice is refused, as TOML refuses it (serde_json's own value keeps the
+        // last without a word)
+        let mut de = serde_json::Deserializer::from_str(text);
+        let v = serde::de::DeserializeSeed::deserialize(NoDuplicates(""), &mut de)
+            .and_then(|v| de.end().map(|()| v))
+            .map_err(|e| SceneError::Parse {
+                file: file.into(),
+                message: short_lines(&format!("JSON parse error: {e}")),
+            })?;
         let mut s = Self::from_json_value(file, &v)?;
         s.text = Some(text.to_string());
         Ok(s)
@@ -107,21 +112,27 @@ impl Scene {
     }
 
     /// Reads a scene file: JSON if its name ends in `.json` or its text starts with `{`,
-    /// TOML otherwise. Files larger than [`MAX_SCENE_BYTES`] are refused before they are
-    /// read whole (a FIFO or `/dev/zero` stops at the limit).
+    /// TOML otherwise. Anything but a regular file (a folder, a FIFO, a device, a socket)
+    /// is refused before it is opened: a FIFO with no writer would block for ever. Files
+    /// larger than [`MAX_SCENE_BYTES`] are refused before they are read whole.
     pub fn read(path: &std::path::Path) -> Result<Self, SceneError> {
         let file = path.display().to_string();
         let read = |e: std::io::Error| SceneError::Read {
             file: file.clone(),
             message: e.to_string(),
         };
-        if path.is_dir() {
-            return Err(SceneError::Read {
-                file,
-                message: "it is a folder, not a scene file".into(),
-            });
-        }
+        let regular = |m: &std::fs::Metadata| match not_regular(m) {
+            Some(what) => Err(SceneError::Read {
+                file: file.clone(),
+                message: format!("it is {what}, not a scene file"),
+            }),
+            None => Ok(()),
+        };
+        // the type first, from the path: opening a FIFO would wait for a writer
+        regular(&std::fs::metadata(path).map_err(read)?)?;
         let f = std::fs::File::open(path).map_err(read)?;
+        // the same check on the file opened (the path may have changed in between)
+        regular(&f.metadata().map_err(read)?)?;
         let mut bytes = Vec::new();
         f.take(MAX_SCENE_BYTES + 1)
             .read_to_end(&mut bytes)
@@ -305,6 +316,36 @@ impl Scene {
     }
 }
 
+/// What an input path is when it is not a regular file ("a folder", "a FIFO", ...), None
+/// for a regular file. Inputs are read from regular files only: a FIFO with no writer
+/// would block the reader for ever, a device may never end.
+pub fn not_regular(m: &std::fs::Metadata) -> Option<&'static str> {
+    let t = m.file_type();
+    if t.is_file() {
+        return None;
+    }
+    if t.is_dir() {
+        return Some("a folder");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return Some("a FIFO");
+        }
+        if t.is_char_device() {
+            return Some("a character device");
+        }
+        if t.is_block_device() {
+            return Some("a block device");
+        }
+        if t.is_socket() {
+            return Some("a socket");
+        }
+    }
+    Some("an unknown kind of file")
+}
+
 /// A parser's message with every line cut to 160 characters: a message quotes the line at
 /// fault, which may be a 200 kB line of a broken file.
 fn short_lines(message: &str) -> String {
@@ -328,6 +369,97 @@ pub fn parse_value(text: &str) -> toml::Value {
     match toml::from_str::<toml::Table>(&doc) {
         Ok(mut t) => t.remove("v").unwrap_or(toml::Value::String(text.into())),
         Err(_) => toml::Value::String(text.trim().to_string()),
+    }
+}
+
+/// A JSON value read with every object's keys checked: a key given twice in one object is
+/// an error naming it (`contact.radius`), where serde_json's own `Value` keeps the last.
+/// The `&str` is where the value sits (`""` at the top).
+struct NoDuplicates<'a>(&'a str);
+
+impl<'de> serde::de::DeserializeSeed<'de> for NoDuplicates<'_> {
+    type Value = serde_json::Value;
+
+    fn deserialize<D: serde::Deserializer<'de>>(self, d: D) -> Result<serde_json::Value, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<'de> serde::de::Visitor<'de> for NoDuplicates<'_> {
+    type Value = serde_json::Value;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a JSON value")
+    }
+
+    fn visit_bool<E: serde::de::Error>(self, v: bool) -> Result<serde_json::Value, E> {
+        Ok(serde_json::Value::Bool(v))
+    }
+
+    fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<serde_json::Value, E> {
+        Ok(serde_json::Value::Number(v.into()))
+    }
+
+    fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<serde_json::Value, E> {
+        Ok(serde_json::Value::Number(v.into()))
+    }
+
+    fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<serde_json::Value, E> {
+        serde_json::Number::from_f64(v)
+            .map(serde_json::Value::Number)
+            .ok_or_else(|| E::custom(format!("`{}`: not a finite number", self.0)))
+    }
+
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<serde_json::Value, E> {
+        Ok(serde_json::Value::String(v.to_owned()))
+    }
+
+    fn visit_string<E: serde::de::Error>(self, v: String) -> Result<serde_json::Value, E> {
+        Ok(serde_json::Value::String(v))
+    }
+
+    fn visit_unit<E: serde::de::Error>(self) -> Result<serde_json::Value, E> {
+        Ok(serde_json::Value::Null)
+    }
+
+    fn visit_none<E: serde::de::Error>(self) -> Result<serde_json::Value, E> {
+        Ok(serde_json::Value::Null)
+    }
+
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(
+        self,
+        mut seq: A,
+    ) -> Result<serde_json::Value, A::Error> {
+        let mut items = Vec::new();
+        loop {
+            let at = format!("{}[{}]", self.0, items.len());
+            match seq.next_element_seed(NoDuplicates(&at))? {
+                Some(x) => items.push(x),
+                None => return Ok(serde_json::Value::Array(items)),
+            }
+        }
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(
+        self,
+        mut map: A,
+    ) -> Result<serde_json::Value, A::Error> {
+        let mut object = serde_json::Map::new();
+        while let Some(k) = map.next_key::<String>()? {
+            let at = if self.0.is_empty() {
+                k.clone()
+            } else {
+                format!("{}.{k}", self.0)
+            };
+            if object.contains_key(&k) {
+                return Err(serde::de::Error::custom(format!(
+                    "duplicate key `{at}`: give each key once"
+                )));
+            }
+            let x = map.next_value_seed(NoDuplicates(&at))?;
+            object.insert(k, x);
+        }
+        Ok(serde_json::Value::Object(object))
     }
 }
 
@@ -443,6 +575,31 @@ mod tests {
         assert_eq!(t.tree(), j.tree());
         let e = Scene::from_json_str("j", r#"{"contact": {"radius": null}}"#).unwrap_err();
         assert!(e.to_string().contains("contact.radius"), "{e}");
+    }
+
+    #[test]
+    fn a_json_key_given_twice_is_refused_naming_it() {
+        let e = Scene::from_json_str(
+            "j.json",
+            r#"{"kind": "asperity", "contact": {"radius": 1e-6, "radius": 2e-6}}"#,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("j.json") && e.contains("duplicate key `contact.radius`"),
+            "{e}"
+        );
+        let e = Scene::from_json_str("j.json", r#"{"cycles": 3, "cycles": 4}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("duplicate key `cycles`"), "{e}");
+        // the same key in two objects is two keys
+        let s = Scene::from_json_str(
+            "j.json",
+            r#"{"contact": {"radius": 1e-6}, "switch": {"radius": 2e-6}, "a": [{"x": 1}, {"x": 2}]}"#,
+        )
+        .unwrap();
+        assert_eq!(s.get("switch.radius"), Some(&toml::Value::Float(2e-6)));
     }
 
     #[test]

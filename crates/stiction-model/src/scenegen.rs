@@ -5,6 +5,10 @@
 //!   asperity radii 0.5-20 um, w 0.05-2.5 J/m^2, z0 0.1-0.5 nm, sigma_s 0.5-30 nm,
 //!   0.1-100 asperities per um^2, gaps 0.5-5 um, impact energies 1e-3-2 J/m^2.
 //! * [`Domain::Wide`]: every scene key over the range a scene file accepts, log-uniform.
+//! * [`Domain::Soft`]: soft films such as gold (E 50-100 GPa, S_Y 0.1-0.5 GPa, Poisson
+//!   0.35-0.44; every plastic law, both eq-1 readings and reload rules; a counter-surface
+//!   of the same film, rigid, or another soft film), the rest as MEMS contacts: the films
+//!   that flatten most from cycle to cycle, where the reload tables carry each later cycle.
 //!
 //! Every built-in adhesion law, every plasticity law, both readings of eq 1, both reload
 //! rules and all three counter-surfaces are drawn. A small SplitMix64 generator keeps the
@@ -21,6 +25,8 @@ pub enum Domain {
     Mems,
     /// The whole range a scene file accepts.
     Wide,
+    /// Soft films (gold-like), otherwise MEMS contacts.
+    Soft,
 }
 
 /// SplitMix64 (Steele, Lea & Flood 2014): a tiny, well-mixed, seedable generator.
@@ -72,7 +78,7 @@ pub fn switch_scene(rng: &mut Rng, domain: Domain, file: &str) -> Scene {
     let f = Value::Float;
     let material = counter == "material";
     match domain {
-        Domain::Mems => {
+        Domain::Mems | Domain::Soft => {
             contact.insert("youngs_modulus".into(), f(rng.log_uniform(50e9, 600e9)));
             contact.insert("poisson_ratio".into(), f(rng.uniform(0.2, 0.42)));
             contact.insert("yield_stress".into(), f(rng.log_uniform(0.2e9, 5e9)));
@@ -137,6 +143,25 @@ pub fn switch_scene(rng: &mut Rng, domain: Domain, file: &str) -> Scene {
     // the laws added after the first measurements: drawn last
     if plasticity == "etsion_kadin" && rng.unit() < 1.0 / 3.0 {
         plasticity = "kogut_etsion";
+    }
+    if domain == Domain::Soft {
+        // the film's own numbers, drawn after the others so that the MEMS draws keep theirs
+        contact.insert("youngs_modulus".into(), f(rng.log_uniform(50e9, 100e9)));
+        contact.insert("poisson_ratio".into(), f(rng.uniform(0.35, 0.44)));
+        contact.insert("yield_stress".into(), f(rng.log_uniform(0.1e9, 0.5e9)));
+        if material {
+            contact.insert(
+                "counter_youngs_modulus".into(),
+                f(rng.log_uniform(50e9, 100e9)),
+            );
+            contact.insert("counter_poisson_ratio".into(), f(rng.uniform(0.35, 0.44)));
+            contact.insert(
+                "counter_yield_stress".into(),
+                f(rng.log_uniform(0.1e9, 0.5e9)),
+            );
+        }
+        // every plastic law (a soft film's point is its plasticity)
+        plasticity = rng.pick(&["etsion_kadin", "kogut_etsion"]);
     }
     let reload = rng.pick(&["as_printed", "bounded"]);
     let s = |w: &str| Value::String(w.into());

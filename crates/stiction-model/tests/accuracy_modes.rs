@@ -243,3 +243,111 @@ fn a_user_law_without_declared_kinks_meets_the_targets() {
         }
     }
 }
+
+/// Every cycle's error of `r` against `yardstick` within the mode's targets and within the
+/// two runs' error estimates together; the failures, in words.
+fn per_cycle(name: &str, yardstick: &SwitchResult, r: &SwitchResult, sigma: f64) -> Vec<String> {
+    let targets = r.accuracy;
+    let t = targets.mode;
+    let floor = 1e-9 * yardstick.restoring_pressure / yardstick.contact_area_fraction;
+    let mut out = Vec::new();
+    assert_eq!(yardstick.cycles.len(), r.cycles.len(), "{name}: cycles run");
+    for (y, c) in yardstick.cycles.iter().zip(&r.cycles) {
+        let dd = (c.d_e - y.d_e).abs();
+        let dp = (c.pull_out_pressure - y.pull_out_pressure).abs();
+        let rel = dp / y.pull_out_pressure.abs().max(floor);
+        if dd / sigma > targets.d_e_tolerance_sigma || rel > targets.pull_out_tolerance {
+            out.push(format!(
+                "{name} {t} cycle {}: d_e {:.2e} sigma_s, pull-out {rel:.2e} (targets {:e}, {:e})",
+                c.cycle,
+                dd / sigma,
+                targets.d_e_tolerance_sigma,
+                targets.pull_out_tolerance
+            ));
+        }
+        if dd > c.d_e_error + y.d_e_error || dp > c.pull_out_error + y.pull_out_error {
+            out.push(format!(
+                "{name} {t} cycle {}: errors d_e {dd:.2e} m, pull-out {dp:.2e} Pa beyond the estimates {:.2e} m, {:.2e} Pa",
+                c.cycle,
+                c.d_e_error + y.d_e_error,
+                c.pull_out_error + y.pull_out_error
+            ));
+        }
+    }
+    out
+}
+
+/// Issue 41: on soft films (gold-like: E below 100 GPa, S_Y below 0.5 GPa) fast mode
+/// missed its targets from cycle 2 on (the reload tables' cycles), 1.3e-3 sigma_s on the
+/// QA's repro (its Newton on the tabulated virgin loading stopped after six steps from a
+/// far start), and its estimates did not cover the error the history carries into later
+/// cycles (220x short). The repro's film and random soft films, every cycle against the
+/// accurate mode (itself within 1e-9 of the reference, measured in performance.md).
+#[test]
+fn fast_and_balanced_modes_meet_their_targets_on_soft_films_at_every_cycle() {
+    let registry = LawRegistry::builtin();
+    // the QA's repro (../shared/repro/2026-11-28/R2_fast_mode_soft_film.toml)
+    let repro = stiction_model::scene::Scene::from_toml_str(
+        "R2",
+        r#"
+cycles = 3
+points = 0
+elastic_comparison = false
+contact_state = "none"
+[contact]
+youngs_modulus = 81178081745.26855
+yield_stress = 228848166.40098476
+poisson_ratio = 0.25059211185696706
+radius = 8.444083683934808e-06
+work_of_adhesion = 0.7697122983558029
+z0 = 3.8213241138894935e-10
+counter = "same"
+adhesion_law = "maugis_kim"
+plasticity_law = "etsion_kadin"
+yield_modulus = "as_printed"
+reload = "as_printed"
+[surface]
+sigma_s = 7.268982457521034e-09
+asperity_density = 6028195558853.958
+[switch]
+d0 = 4.484554620234818e-07
+t_d = 4.97310750554912e-07
+epsilon_r = 3.5714627715423752
+film_thickness = 1.612725346157318e-06
+impact_energy = 0.010124400610215594
+contact_area_fraction = 0.9467404331859421
+"#,
+    )
+    .unwrap();
+    let mut specs = vec![(
+        "R2".to_string(),
+        SwitchSpec::new(&repro, &registry).unwrap(),
+    )];
+    let mut rng = Rng::new(41);
+    while specs.len() < 7 {
+        let mut scene = scenegen::switch_scene(&mut rng, Domain::Soft, "generated");
+        scene.set_number("cycles", 4.0).unwrap();
+        if let Ok(spec) = SwitchSpec::new(&scene, &registry) {
+            specs.push((format!("soft {}", specs.len()), spec));
+        }
+    }
+    let mut failures = Vec::new();
+    let mut compared = 0;
+    for (name, s) in &specs {
+        let sigma = s.roughness.sigma_s;
+        let Ok(accurate) = run(s, Accuracy::Accurate, 0) else {
+            // a film that cannot absorb its impact: no answer to compare
+            continue;
+        };
+        for mode in [Accuracy::Balanced, Accuracy::Fast] {
+            let r = run(s, mode, 0).unwrap_or_else(|e| panic!("{name} {mode}: {e}\n{}", toml(s)));
+            let found = per_cycle(name, &accurate, &r, sigma);
+            if !found.is_empty() {
+                failures.push(format!("{}\n{}", found.join("\n"), toml(s)));
+            }
+            compared += 1;
+        }
+    }
+    assert!(compared >= 8, "too few soft films answered: {compared}");
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}

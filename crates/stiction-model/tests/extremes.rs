@@ -184,3 +184,46 @@ fn asperity_far_beyond_the_fits_stays_finite_and_warns() {
     assert!(r.cases[0].pull_off_force.is_finite() && r.cases[0].extrapolated);
     assert!(r.warnings.iter().any(|w| w.code == "beyond_fit_range"));
 }
+
+/// A `delta_max` given as an argument (the Python `Asperity.state`, `pull_off`, ...) has
+/// the domain of an asperity scene's `delta_max`, (0, 1e3 R], checked by one function of
+/// the library: 1e10 m (a residual radius of 1e13 m) and 1e308 m (an infinite one) are
+/// refused naming the argument, as bad input.
+#[test]
+fn a_delta_max_argument_has_the_asperity_scenes_domain() {
+    use stiction_model::contact_core::{Categorized, Category};
+    use stiction_model::spec::check_delta_max;
+    let scene = Scene::paper(Kind::Asperity);
+    let spec = AsperitySpec::new(&scene, &LawRegistry::builtin()).unwrap();
+    let r = spec.contact.radius;
+    assert!(check_delta_max("delta_max", 1e-8, r).is_ok());
+    assert!(check_delta_max("delta_max", 1e3 * r, r).is_ok());
+    for bad in [
+        1e308,
+        1e10,
+        1.001e3 * r,
+        0.0,
+        -1e-9,
+        f64::NAN,
+        f64::INFINITY,
+    ] {
+        let e = check_delta_max("delta_max", bad, r).unwrap_err();
+        assert_eq!(e.category(), Category::Input, "{bad:e}");
+        let m = e.to_string();
+        assert!(m.contains("delta_max") && m.contains("1e3 radius"), "{m}");
+        // the scene refuses the same values with the same domain
+        let mut s = scene.clone();
+        s.set(
+            "delta_max",
+            toml::Value::Array(vec![toml::Value::Float(bad)]),
+        )
+        .unwrap();
+        let e = AsperitySpec::new(&s, &LawRegistry::builtin())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("delta_max[0]") && e.contains("1e3 radius"),
+            "{e}"
+        );
+    }
+}

@@ -419,3 +419,38 @@ fn a_repeated_cycle_shares_the_contact_state_solved_for_it_alone() {
     assert_eq!(json(&every.cycles[n - 1]), json(&last.cycles[n - 1]));
     assert_eq!(json(&every.cycles[n - 2]), json(&every.cycles[n - 1]));
 }
+
+/// A hold the surface cannot bear (1e5 V on the paper's switch: some 1e17 Pa per contact
+/// area, beyond any pressure of the surface down to its deepest separation) leaves the hold
+/// state absent with a warning, never the run: the cycles, the pull-out and the verdict are
+/// those of the run without contact states (../shared/repro/2026-11-24 D13, which lost them).
+#[test]
+fn a_hold_the_surface_cannot_bear_is_a_warning_and_the_cycles_are_kept() {
+    let (_, held) = run(&switch_scene(&[("switch.hold_voltage", "1e5")]));
+    let (_, none) = run(&switch_scene(&[
+        ("switch.hold_voltage", "1e5"),
+        ("contact_state", "none"),
+    ]));
+    assert_eq!(held.cycles.len(), none.cycles.len());
+    for (a, b) in held.cycles.iter().zip(&none.cycles) {
+        assert_eq!(a.d_e.to_bits(), b.d_e.to_bits());
+        assert_eq!(a.pull_out_pressure.to_bits(), b.pull_out_pressure.to_bits());
+        assert_eq!(a.sticks, b.sticks);
+        assert_eq!(a.hold_status, "not_computable", "cycle {}", a.cycle);
+        assert!(a.hold.is_none());
+    }
+    assert_eq!(held.stiction, none.stiction);
+    assert_eq!(held.first_sticking_cycle, none.first_sticking_cycle);
+    assert!(
+        held.warnings
+            .iter()
+            .any(|w| w.code == "side_quantity_not_computed"
+                && w.message.contains("the rest under the hold of cycle 1")),
+        "{:?}",
+        held.warnings
+    );
+    // absent values are null in JSON, never a number made up
+    let v = serde_json::to_value(&held).unwrap();
+    assert!(v["cycles"][0]["hold"].is_null());
+    assert_eq!(v["cycles"][0]["hold_status"], "not_computable");
+}

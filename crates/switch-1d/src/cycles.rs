@@ -573,8 +573,11 @@ struct Above {
 /// - the balance G(x) = W(x) + film(p(x)) - E_I, with W and p from the tables, is sampled
 ///   in steps growing as the search from the top grows them, to the first sample with
 ///   p > 0 and G >= 0;
-/// - the root of the tabulated G in that step (Brent), then Newton on G with the evaluated
-///   pressure p(x) and the tabulated work to the root within a tenth of the d_e target;
+/// - the root of the tabulated G in that step (Brent; where the first step's sample closes,
+///   between it and hi, open as the evaluated pressure shows), then Newton on G with the
+///   evaluated pressure p(x) and the tabulated work to the root within a tenth of the d_e
+///   target, kept inside the bracket the evaluated balance shows, its slope refreshed from
+///   the evaluated pressures (None where it does not converge in [`NEWTON_STEPS`]);
 /// - the error estimate: the last correction, plus the work's estimate (above and the
 ///   tables') and the film term's share of the pressure's estimate, over |dG/dx|. The
 ///   second value returned is the evaluated pressures' share (those above hi and the last
@@ -608,14 +611,11 @@ fn tabulated<S: SurfaceLaw>(
             v.work,
         )))
     };
-    /// Where Newton starts: the tabulated root in a bracket, or (when the first step's
-    /// sample closes) the linearized root below hi, with the step's width.
-    enum Start {
-        Bracket(Sample, Sample),
-        Near { x: f64, width: f64 },
-    }
+    // the tabulated balance closes at `lo` and is open at `hi` (where the first sample
+    // closes, open as the evaluated pressure shows: just below a deepest point the last
+    // impact nearly closed at, the tabulated pressure, to 1e-3, cannot tell)
     let mut upper = (hi, f64::NEG_INFINITY);
-    let start = loop {
+    let (lo, top) = loop {
         let lo = (upper.0 - step).max(floor);
         let Some((g, p, v)) = at(lo)? else {
             return Ok(None);
@@ -626,21 +626,14 @@ fn tabulated<S: SurfaceLaw>(
         }
         if p > 0.0 && g >= 0.0 {
             if upper.0 == hi {
-                // the first sample closes: is the balance open at hi itself? Just below a
-                // deepest point the last impact nearly closed at, the tabulated pressure
-                // (to 1e-3) cannot tell; the evaluated one can, and G falls at about
-                // -p(hi) from there, which gives Newton its start
                 let e = surface.pressure_estimate(hi, history, Path::Approach)?;
                 let g_hi = work.value + film.energy(e.value) - energy;
                 if !(e.value > 0.0) || g_hi >= 0.0 {
                     return Ok(None);
                 }
-                break Start::Near {
-                    x: (hi + g_hi / e.value).clamp(lo, hi),
-                    width: hi - lo,
-                };
+                upper.1 = g_hi;
             }
-            break Start::Bracket(
+            break (
                 Sample { x: lo, f: g },
                 Sample {
                     x: upper.0,
@@ -665,31 +658,25 @@ fn tabulated<S: SurfaceLaw>(
             .min(64.0 * sigma);
         upper = (lo, g);
     };
-    let (mut x, width) = match start {
-        Start::Near { x, width } => (x, width),
-        Start::Bracket(lo, hi) => {
-            let g_of =
-                |x: f64| -> Result<f64, SwitchError> { Ok(at(x)?.map_or(f64::NAN, |(g, _, _)| g)) };
-            let root = brent_from(
-                "eq 17 on the tabulated virgin loading",
-                g_of,
-                lo,
-                hi,
-                // to a thousandth of sigma: Newton with the evaluated pressure goes on from there
-                Tolerance {
-                    rel: 0.0,
-                    abs: (1e-3 * sigma).max(0.01 * tol_d),
-                    max_iter: 200,
-                },
-            );
-            // a table the surface could not give inside the bracket: the search with
-            // panels decides
-            let Ok(x) = root else {
-                return Ok(None);
-            };
-            (x, hi.x - lo.x)
-        }
+    let g_of = |x: f64| -> Result<f64, SwitchError> { Ok(at(x)?.map_or(f64::NAN, |(g, _, _)| g)) };
+    let root = brent_from(
+        "eq 17 on the tabulated virgin loading",
+        g_of,
+        lo,
+        top,
+        // to a thousandth of sigma: Newton with the evaluated pressure goes on from there
+        Tolerance {
+            rel: 0.0,
+            abs: (1e-3 * sigma).max(0.01 * tol_d),
+            max_iter: 200,
+        },
+    );
+    // a table the surface could not give inside the bracket: the search with panels
+    // decides
+    let Ok(mut x) = root else {
+        return Ok(None);
     };
+    let width = top.x - lo.x;
     // the tables answer below hi only
     let below_hi = hi.next_down();
     x = x.min(below_hi);
@@ -705,16 +692,36 @@ fn tabulated<S: SurfaceLaw>(
         (Some(a), Some(b)) => (a.1, b.1),
         _ => return Ok(None),
     };
-    let dp = (p2 - p1) / (xb - xa);
+    let mut dp = (p2 - p1) / (xb - xa);
+    // Newton on G with the evaluated pressure, kept inside the bracket the evaluated
+    // balance shows (closed at `closed`, open at `open`; halved where a step leaves it),
+    // dp/dx refreshed from the evaluated pressures once the steps are long enough for
+    // their difference to be above their noise: the film term makes G convex, and a slope
+    // frozen at a far start converged too slowly (a soft film's d_e 4e-3 sigma_s off after
+    // six steps, issue 41). A Newton that does not converge leaves it to the panels.
+    let (mut closed, mut open) = (lo.x, top.x.min(below_hi));
     let mut correction = f64::INFINITY;
     let (mut p_x, mut slope, mut errors) = (0.0, -1.0, (0.0, 0.0));
-    for _ in 0..6 {
+    let mut last: Option<(f64, f64)> = None;
+    let mut converged = false;
+    for _ in 0..NEWTON_STEPS {
         let e = surface.pressure_estimate(x, history, Path::Approach)?;
         let Some((_, _, v)) = at(x)? else {
             return Ok(None);
         };
         p_x = e.value;
+        if let Some((x0, p0)) = last {
+            if (x - x0).abs() > 1e-3 * sigma {
+                dp = (p_x - p0) / (x - x0);
+            }
+        }
+        last = Some((x, p_x));
         let g = work.value + v.value + film.energy(p_x) - energy;
+        if g >= 0.0 {
+            closed = closed.max(x);
+        } else {
+            open = open.min(x);
+        }
         slope = -p_x + film.thickness / film.youngs_modulus * p_x * dp;
         if !(slope < 0.0) {
             slope = -p_x.abs().max(f64::MIN_POSITIVE);
@@ -724,10 +731,20 @@ fn tabulated<S: SurfaceLaw>(
             pressures_error + film.thickness / film.youngs_modulus * p_x.abs() * e.error,
         );
         correction = -g / slope;
-        x = (x + correction).min(below_hi);
         if correction.abs() <= 0.1 * tol_d {
+            x = (x + correction).min(below_hi);
+            converged = true;
             break;
         }
+        let next = x + correction;
+        x = if next > closed && next < open {
+            next
+        } else {
+            0.5 * (closed + open)
+        };
+    }
+    if !converged {
+        return Ok(None);
     }
     if !(p_x > 0.0) {
         // a closure in the tensile well: the search with panels decides
@@ -743,6 +760,10 @@ fn tabulated<S: SurfaceLaw>(
         errors.1 / slope.abs(),
     )))
 }
+
+/// Newton steps on the tabulated virgin loading before the search with panels is left to
+/// decide (a step halves the bracket where Newton would leave it).
+const NEWTON_STEPS: usize = 40;
 
 /// Gauss-Legendre nodes of the work from a Newton iterate to its panel's top.
 const POLISH_NODES: usize = 8;
@@ -1375,6 +1396,7 @@ pub fn run_cycles<S: SurfaceLaw>(
     }
     let tol = positive("accommodation_tolerance", options.accommodation_tolerance)?;
     let energy = impact.energy / impact.contact_area_fraction;
+    let start = history.clone();
     let mut hist = history;
     let mut cycles: Vec<Cycle<S::History>> = Vec::new();
     let mut accommodated_after = None;
@@ -1514,6 +1536,7 @@ pub fn run_cycles<S: SurfaceLaw>(
             break;
         }
     }
+    carry_history_errors(surface, &start, &mut cycles)?;
     let largest_pull_out = cycles
         .iter()
         .map(|c| c.unloading.pull_out_pressure)
@@ -1538,6 +1561,109 @@ pub fn run_cycles<S: SurfaceLaw>(
         accommodated_after,
         cycles,
     })
+}
+
+/// The step of the differences that carry a history's error into a pull-out, in the
+/// roughness scale: far above the noise of the pressures (their errors over the step are
+/// added to the slope), well within the scale on which the pull-out changes with the
+/// history.
+const HISTORY_STEP: f64 = 1e-3;
+
+/// Adds to each cycle's error estimates the error its history carries (docs/theory.md
+/// section 6.6). A cycle's d_e and pull-out are computed to the mode's precision *on the
+/// history the cycles before left*, whose deepest separation D is itself known only to its
+/// own estimate; a run compared with a tighter one differs by both:
+/// - d_e: its own estimate plus that of D (the end of impact moves by at most as much as
+///   the deepest separation before it: the reload after a deeper delta_max is the same
+///   curve shifted by at most the same depth, and the virgin loading below D pushes back
+///   harder than the reload above it);
+/// - the pull-out: its own estimate plus |dp/dd_e| times the estimate of d_e and, where
+///   the impact did not deepen, |dp/dD| times that of D: each slope a difference of the
+///   retraction pressure at the pull-out's separation (which moves the minimum only to
+///   second order) with the history loaded [`HISTORY_STEP`] sigma_s deeper, plus the
+///   pressures' estimates over the step.
+///
+/// A cycle that repeats the one before (the same history to start from) repeats its
+/// estimates.
+fn carry_history_errors<S: SurfaceLaw>(
+    surface: &S,
+    start: &S::History,
+    cycles: &mut [Cycle<S::History>],
+) -> Result<(), SwitchError> {
+    // the history cycle k started from
+    let before = |cycles: &[Cycle<S::History>], k: usize| -> S::History {
+        if k == 0 {
+            start.clone()
+        } else {
+            cycles[k - 1].history.clone()
+        }
+    };
+    // a cycle repeats the one before when both started from the same history; a cycle
+    // changed the history when its impact went deeper than the history reached
+    let repeats = |cycles: &[Cycle<S::History>], k: usize| {
+        k >= 1 && before(cycles, k) == before(cycles, k - 1)
+    };
+    let changed = |cycles: &[Cycle<S::History>], k: usize| cycles[k].history != before(cycles, k);
+    // the d_e of the last cycle before k that changed the history (its deepest separation)
+    let last_change = |cycles: &[Cycle<S::History>], k: usize| {
+        (0..k)
+            .rev()
+            .find(|&i| changed(cycles, i))
+            .map(|i| cycles[i].end.d_e)
+    };
+    let ks: Vec<usize> = (0..cycles.len()).collect();
+    let view: &[Cycle<S::History>] = cycles;
+    // (dp/dd_e, dp/dD) of each cycle's pull-out (Pa/m)
+    let slopes = par::map(&ks, |&k| -> Result<(f64, f64), SwitchError> {
+        let c = &view[k];
+        let pull = c.unloading.pull_out_pressure;
+        if repeats(view, k) || !(pull > 0.0) {
+            return Ok((0.0, 0.0));
+        }
+        let start_k = before(view, k);
+        let h = HISTORY_STEP * surface.length_scales(&start_k)?.roughness;
+        let at = c.unloading.pull_out_separation;
+        let own = c.unloading.pull_out_error;
+        let slope = |hist: &S::History, from: f64| -> Result<f64, SwitchError> {
+            let e = surface.pressure_estimate(at, hist, Path::Retract { from })?;
+            Ok(((e.value + pull).abs() + e.error + own) / h)
+        };
+        let d_e = c.end.d_e;
+        if changed(view, k) {
+            return Ok((slope(&surface.load(&start_k, d_e - h), d_e - h)?, 0.0));
+        }
+        let of_d_e = || slope(&surface.load(&c.history, d_e - h), d_e - h);
+        match last_change(view, k) {
+            Some(deep) => {
+                let (of_d_e, of_deep) =
+                    par::join(of_d_e, || slope(&surface.load(&c.history, deep - h), d_e));
+                Ok((of_d_e?, of_deep?))
+            }
+            None => Ok((of_d_e()?, 0.0)),
+        }
+    })?;
+    // the estimate of the deepest separation the history holds (0: the history given)
+    let mut deep_error = 0.0;
+    for k in 0..cycles.len() {
+        if repeats(cycles, k) {
+            let (end, pull) = (
+                cycles[k - 1].end.error,
+                cycles[k - 1].unloading.pull_out_error,
+            );
+            cycles[k].end.error = end;
+            cycles[k].unloading.pull_out_error = pull;
+            continue;
+        }
+        let changed_k = changed(cycles, k);
+        let c = &mut cycles[k];
+        c.end.error += deep_error;
+        let (s_d_e, s_deep) = slopes[k];
+        c.unloading.pull_out_error += s_d_e * c.end.error + s_deep * deep_error;
+        if changed_k {
+            deep_error = c.end.error;
+        }
+    }
+    Ok(())
 }
 
 /// Cycles whose impacts and unloadings are found ahead at once ([`impacts_ahead`]) when

@@ -263,10 +263,71 @@ struct Core {
 /// and an instrument resolves 1e-7 of its range at best (a 24-bit scale).
 const FLAT_TO_ROUNDING: f64 = 1e-12;
 
+/// Refuses the first of `values` that is not finite: heights (or a spacing) so large or so
+/// small that `what` overflows double precision. No analysis outputs a NaN or an infinity.
+fn finite(what: &str, values: &[(&str, f64)], largest: f64, dx: f64) -> Result<()> {
+    match values.iter().find(|(_, v)| !v.is_finite()) {
+        None => Ok(()),
+        Some((name, v)) => Err(TopographyError::param(
+            "height map",
+            format!("{name} = {v}"),
+            format!(
+                "{what} overflow double precision (heights up to {largest:e} m, spacing {dx:e} m): \
+                 no finite result; give the heights in their unit (--height-unit) or rescale the map"
+            ),
+        )),
+    }
+}
+
+/// [`finite`] over many values of one name.
+fn all_finite(what: &str, name: &str, values: &[f64], largest: f64, dx: f64) -> Result<()> {
+    match values.iter().find(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(&v) => finite(what, &[(name, v)], largest, dx),
+    }
+}
+
 fn core(map: &HeightMap, how: Detrend) -> Result<Core> {
     let largest = map.heights().iter().fold(0.0_f64, |m, z| m.max(z.abs()));
+    let dx = map.dx();
     let (map, summary) = detrend(map, how)?;
+    all_finite(
+        "the detrended heights",
+        "a detrended height",
+        map.heights(),
+        largest,
+        dx,
+    )?;
+    finite(
+        "the removed form's parameters",
+        &[
+            ("mean_height", summary.mean_height),
+            ("tilt_x", summary.tilt_x),
+            ("tilt_y", summary.tilt_y),
+            ("tilt_degrees", summary.tilt_degrees),
+            ("removed_rms", summary.removed_rms),
+        ],
+        largest,
+        dx,
+    )?;
     let moments = finite_difference_moments(&map);
+    let m = &moments;
+    finite(
+        "the moments",
+        &[
+            ("m0", m.m0),
+            ("m2", m.m2),
+            ("m4", m.m4),
+            ("m20", m.m20),
+            ("m02", m.m02),
+            ("m11", m.m11),
+            ("m40", m.m40),
+            ("m04", m.m04),
+            ("m22", m.m22),
+        ],
+        largest,
+        dx,
+    )?;
     let rms = moments.rms_height();
     if largest > 0.0 && rms <= FLAT_TO_ROUNDING * largest {
         return Err(TopographyError::param(
@@ -284,8 +345,33 @@ fn core(map: &HeightMap, how: Detrend) -> Result<Core> {
             "the detrended map is flat (no slope or curvature): nothing to analyse",
         ));
     }
+    finite("the moments", &[("alpha", moments.alpha())], largest, dx)?;
     let spectral = mccool(&moments);
+    finite(
+        "the spectral route's parameters",
+        &gw_values(&spectral),
+        largest,
+        dx,
+    )?;
     let summits = summit_statistics(&map);
+    if let Some(st) = &summits {
+        finite(
+            "the summit route's parameters",
+            &gw_values(&st.gw),
+            largest,
+            dx,
+        )?;
+        finite(
+            "the summit statistics",
+            &[
+                ("mean_curvature", st.mean_curvature),
+                ("summit skewness", st.skewness),
+                ("summit kurtosis", st.kurtosis),
+            ],
+            largest,
+            dx,
+        )?;
+    }
     Ok(Core {
         map,
         summary,
@@ -293,6 +379,15 @@ fn core(map: &HeightMap, how: Detrend) -> Result<Core> {
         spectral,
         summits,
     })
+}
+
+fn gw_values(g: &GwParameters) -> [(&'static str, f64); 4] {
+    [
+        ("sigma_s", g.sigma_s),
+        ("asperity_density", g.asperity_density),
+        ("radius", g.radius),
+        ("offset", g.offset),
+    ]
 }
 
 fn row(c: &Core, factor: usize, tiles: usize) -> ScaleRow {
@@ -379,7 +474,18 @@ pub fn analyze_measurement(m: &Measurement, opts: &AnalysisOptions) -> Result<To
 pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyReport> {
     let c = core(map, opts.detrend)?;
     let m = c.moments;
+    let largest = map.heights().iter().fold(0.0_f64, |m, z| m.max(z.abs()));
+    let dx = map.dx();
     let heights_shape = shape(c.map.heights());
+    finite(
+        "the height distribution's moments",
+        &[
+            ("skewness", heights_shape.skewness),
+            ("kurtosis", heights_shape.kurtosis),
+        ],
+        largest,
+        dx,
+    )?;
     let mut sampling = vec![row(&c, 1, 1)];
     for &f in &opts.coarsen {
         if f <= 1 {
@@ -463,10 +569,17 @@ pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyRepo
                 .max(ratio(g.0.asperity_density, g.1.asperity_density))
                 .max(ratio(g.0.radius, g.1.radius));
             if worst > 2.0 {
+                // a parameter 0 on one route (McCool's sigma_s below alpha = 0.8968) differs
+                // by no finite factor
+                let factor = if worst.is_finite() {
+                    format!("a factor {worst:.1}")
+                } else {
+                    "more than any factor (a parameter is 0 on one route)".to_string()
+                };
                 warn(
                     "routes_disagree",
                     format!(
-                        "the two routes differ by a factor {worst:.1} in a parameter (spectral: sigma_s {:.3e} m, \
+                        "the two routes differ by {factor} in a parameter (spectral: sigma_s {:.3e} m, \
                          N {:.3e} 1/m^2, R {:.3e} m; summits: {:.3e}, {:.3e}, {:.3e}): the surface is far from the \
                          Gaussian isotropic model, or the sampling resolves its summits poorly",
                         g.1.sigma_s, g.1.asperity_density, g.1.radius, g.0.sigma_s, g.0.asperity_density, g.0.radius
@@ -581,6 +694,59 @@ pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyRepo
         },
     };
 
+    let moments_fourier = spectral_moments(&c.map);
+    let mf = &moments_fourier;
+    finite(
+        "the Fourier moments",
+        &[
+            ("m0", mf.m0),
+            ("m2", mf.m2),
+            ("m4", mf.m4),
+            ("m20", mf.m20),
+            ("m02", mf.m02),
+            ("m11", mf.m11),
+            ("m40", mf.m40),
+            ("m04", mf.m04),
+            ("m22", mf.m22),
+        ],
+        largest,
+        dx,
+    )?;
+    for r in sampling.iter().chain(scan_size.iter()) {
+        let mut v = vec![
+            ("rms_height", r.rms_height),
+            ("m2", r.m2),
+            ("m4", r.m4),
+            ("alpha", r.alpha),
+        ];
+        v.extend(gw_values(&r.spectral));
+        if let Some(g) = &r.summits {
+            v.extend(gw_values(g));
+        }
+        finite("the sampling and scan-size tables", &v, largest, dx)?;
+    }
+    all_finite(
+        "the plotted heights",
+        "a plotted height",
+        &plots.height_map.z,
+        largest,
+        dx,
+    )?;
+    for h in [&plots.summit_heights, &plots.heights] {
+        finite(
+            "the histograms",
+            &[("width", h.width), ("mean", h.mean), ("std", h.std)],
+            largest,
+            dx,
+        )?;
+        for v in [&h.centres, &h.density, &h.gaussian] {
+            all_finite("the histograms", "a histogram value", v, largest, dx)?;
+        }
+    }
+    for p in &plots.psd {
+        finite("the PSD values", &[("q", p.q), ("C(q)", p.c)], largest, dx)?;
+    }
+
     Ok(TopographyReport {
         rms_height: m.rms_height(),
         m0: m.m0,
@@ -596,7 +762,7 @@ pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyRepo
         grid: Grid::of(&c.map),
         detrending: c.summary,
         moments: m,
-        moments_fourier: spectral_moments(&c.map),
+        moments_fourier,
         slope_anisotropy: aniso,
         heights: heights_shape,
         sampling,

@@ -545,3 +545,75 @@ fn the_analysis_is_the_same_through_every_format() {
         assert_eq!(r.source.as_ref().unwrap().format, f);
     }
 }
+
+/// Heights so large that a moment, a parameter or a statistic overflows double precision
+/// (up to +-1e308 m) are refused naming what overflowed, never analysed into NaN or
+/// infinite moments and parameters; heights large but analysable give finite numbers
+/// throughout.
+#[test]
+fn overflowing_heights_are_refused_never_analysed_into_non_finite_values() {
+    let n = 32;
+    for scale in [1e308, 1e250, 1e160, 1e120, 1e100, 1e-9] {
+        let z: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let (i, j) = (k % n, k / n);
+                scale * (((i * 7919 + j * 104_729 + i * j * 31) % 97) as f64 / 48.5 - 1.0)
+            })
+            .collect();
+        let map = HeightMap::new(n, n, 1e-8, 1e-8, z).unwrap();
+        match analyze(&map, &AnalysisOptions::default()) {
+            Err(e) => {
+                let e = e.to_string();
+                assert!(
+                    e.contains("height map") && e.contains("overflow"),
+                    "{scale:e}: {e}"
+                );
+                assert!(scale > 1.0, "{scale:e}: refused: {e}");
+            }
+            Ok(r) => {
+                let mut v = vec![
+                    r.rms_height,
+                    r.m0,
+                    r.m2,
+                    r.m4,
+                    r.alpha,
+                    r.heights.skewness,
+                    r.heights.kurtosis,
+                    r.spectral.gw.sigma_s,
+                    r.spectral.gw.asperity_density,
+                    r.spectral.gw.radius,
+                    r.spectral.gw.offset,
+                    r.moments_fourier.m0,
+                    r.moments_fourier.m4,
+                ];
+                if let Some(s) = &r.summits {
+                    v.extend([
+                        s.gw.sigma_s,
+                        s.gw.asperity_density,
+                        s.gw.radius,
+                        s.gw.offset,
+                        s.skewness,
+                        s.kurtosis,
+                    ]);
+                }
+                for row in r.sampling.iter().chain(r.scan_size.iter()) {
+                    v.extend([
+                        row.rms_height,
+                        row.m2,
+                        row.m4,
+                        row.alpha,
+                        row.spectral.sigma_s,
+                    ]);
+                }
+                assert!(v.iter().all(|x| x.is_finite()), "{scale:e}: {v:?}");
+                for w in &r.warnings {
+                    assert!(
+                        !w.message.contains("inf") && !w.message.contains("NaN"),
+                        "{scale:e}: {}",
+                        w.message
+                    );
+                }
+            }
+        }
+    }
+}
