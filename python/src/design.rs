@@ -80,6 +80,7 @@ pub struct PyMap {
     map: Map,
     warnings: Vec<Warning>,
     validity: Option<Validity>,
+    model_form: Option<stiction_model::model_form::MapModelForm>,
 }
 
 impl PyMap {
@@ -88,6 +89,7 @@ impl PyMap {
             map: r.map,
             warnings: r.warnings,
             validity: Some(r.validity),
+            model_form: r.model_form,
         }
     }
 }
@@ -118,6 +120,9 @@ impl PyMap {
         match &self.validity {
             Some(v) => d.set_item("validity", result_to_py(py, v)?)?,
             None => d.set_item("validity", py.None())?,
+        }
+        if let Some(m) = &self.model_form {
+            d.set_item("model_form", result_to_py(py, m)?)?;
         }
         Ok(out)
     }
@@ -410,10 +415,13 @@ pub fn design_map_assemble(
         }
     }
     let warnings = ev.warnings(map.points().len());
+    // (a map assembled from a cluster's points carries no model-form check: the check
+    // runs through `design_map` without a client)
     Ok(PyMap {
         validity: Some(Validity::of(&warnings)),
         map,
         warnings,
+        model_form: None,
     })
 }
 
@@ -425,6 +433,7 @@ pub fn read_map(path: PathBuf) -> PyResult<PyMap> {
         map,
         warnings: Vec::new(),
         validity: None,
+        model_form: None,
     })
 }
 
@@ -449,5 +458,6 @@ pub fn design_merge(parts: &Bound<'_, PyList>) -> PyResult<PyMap> {
         map,
         warnings: Vec::new(),
         validity: None,
+        model_form: None,
     })
 }

@@ -23,6 +23,7 @@ pub struct PyProbability {
     run: Probability,
     warnings: Vec<Warning>,
     validity: Option<Validity>,
+    model_form: Option<stiction_model::model_form::ProbabilityModelForm>,
 }
 
 impl PyProbability {
@@ -31,6 +32,7 @@ impl PyProbability {
             run,
             warnings: Vec::new(),
             validity: None,
+            model_form: None,
         }
     }
 }
@@ -77,6 +79,9 @@ impl PyProbability {
         match &self.validity {
             Some(v) => d.set_item("validity", result_to_py(py, v)?)?,
             None => d.set_item("validity", py.None())?,
+        }
+        if let Some(m) = &self.model_form {
+            d.set_item("model_form", result_to_py(py, m)?)?;
         }
         Ok(out)
     }
@@ -131,6 +136,7 @@ pub fn design_probability(
         run: r.probability,
         warnings: r.warnings,
         validity: Some(r.validity),
+        model_form: r.model_form,
     })
 }
 

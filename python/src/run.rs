@@ -10,7 +10,6 @@ use pyo3::types::PyDict;
 use std::path::PathBuf;
 use stiction_model::calibration::{self, CalibError, Selection};
 use stiction_model::spec::{AsperitySpec, Spec};
-use stiction_model::switch::SwitchModel;
 use stiction_model::{asperity, md, surface, ModelError, Silent};
 
 /// Sets the accuracy mode on a copy of the scene, as the CLI's `--accuracy` does.
@@ -61,7 +60,11 @@ pub fn run(
         Ok(match Spec::new(&scene, &registry())? {
             Spec::Asperity(s) => Ran::Asperity(Box::new(asperity::run(&s)?)),
             Spec::Surface(s) => Ran::Surface(Box::new(surface::run(&s)?)),
-            Spec::Switch(s) => Ran::Switch(Box::new(SwitchModel::build(&s)?.run(&Silent)?)),
+            Spec::Switch(s) => Ran::Switch(Box::new(stiction_model::model_form::run_switch(
+                &s,
+                &registry(),
+                &Silent,
+            )?)),
             _ => {
                 return Err(ModelError::argument(
                     "scene",

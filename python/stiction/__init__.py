@@ -46,6 +46,7 @@ from ._results import (
     LawResult,
     MapPoint,
     MdResult,
+    ModelFormReport,
     ModelWarning,
     ProbabilityResult,
     ProbabilitySample,
@@ -58,11 +59,34 @@ from ._results import (
 from ._stiction import Scene
 
 
-def _count(name: str, value: Any, least: int) -> int:
-    """An integer argument (not a bool, not a float), at least `least`, or InputError."""
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
-        raise InputError(f"invalid {name} = {value!r}: must be an integer >= {least}")
+# the largest integer the library takes: a count (usize, i64) or a seed (u64) beyond it
+# would overflow on the way in (an OverflowError) instead of being refused by name
+_I64_MAX = 2**63 - 1
+_U64_MAX = 2**64 - 1
+
+
+def _count(name: str, value: Any, least: int, most: int = _I64_MAX) -> int:
+    """An integer argument (not a bool, not a float) in [`least`, `most`], or InputError."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not least <= value <= most:
+        shown = repr(value)
+        if len(shown) > 40:  # 10**400: its length, not its 401 digits
+            if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+                shown = f"an integer of {int(value).bit_length()} bits"
+            else:
+                shown = shown[:40] + "..."
+        raise InputError(f"invalid {name} = {shown}: must be an integer in [{least}, {most}]")
     return int(value)
+
+
+def _client(client: Any) -> Any:
+    """A `client` argument: None, a dask.distributed.Client or a concurrent.futures.Executor
+    (anything with a callable ``submit``), or InputError naming it."""
+    if client is not None and not callable(getattr(client, "submit", None)):
+        raise InputError(
+            f"invalid client = {type(client).__name__}: must be a dask.distributed.Client, a "
+            "concurrent.futures.Executor (an object with submit) or None"
+        )
+    return client
 
 
 def _word(name: str, value: Any) -> Optional[str]:
@@ -99,6 +123,7 @@ __all__ = [
     "Record",
     "Table",
     "SwitchResult",
+    "ModelFormReport",
     "ContactState",
     "Cycle",
     "SurfaceResult",
@@ -247,7 +272,7 @@ def design_map(
     ``meets_requirement`` and ``in_window`` (free of stiction and meeting it), as
     ``--require``."""
     vary_list = [vary] if isinstance(vary, str) else list(vary)
-    if client is None:
+    if _client(client) is None:
         return _design_map(
             _stiction.design_map(scene, vary_list, _word("accuracy", accuracy), _word("shard", shard), _word("require", require))
         )
@@ -349,7 +374,7 @@ def design_probability(
             scene,
             scatter_list,
             _count("samples", samples, 1),
-            _count("seed", seed, 0),
+            _count("seed", seed, 0, _U64_MAX),
             correlate_list,
             confidence,
             _word("accuracy", accuracy),

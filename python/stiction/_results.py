@@ -34,6 +34,8 @@ __all__ = [
     "ContactState",
     "Cycle",
     "ElasticComparison",
+    "ModelFormRun",
+    "ModelFormReport",
     "SwitchResult",
     "SurfaceErrors",
     "SurfaceResult",
@@ -520,8 +522,32 @@ class Cycle(Record):
     unloading: PressureCurve  #: unloading curve (empty with points = 0)
     well: PressureCurve  #: the adhesive well with the pull-out point (empty with points = 0)
     hold: Optional[ContactState]  #: the rest under the hold (None: opens or not computed)
-    hold_status: str  #: rests | deeper_than_impact | opens | not_computed
+    hold_status: str  #: rests | deeper_than_impact | opens | not_computed | not_computable
     end_of_impact: Optional[ContactState]  #: the contact at d_e (None: not computed)
+
+
+class ModelFormRun(Record):
+    """One combination of a model-form check (``model_form.runs``)."""
+
+    laws: Laws  #: its plasticity law, eq-1 reading, reload rule and adhesion law
+    pull_out_ratio: float  #: the largest pull-out ratio over its cycles
+    stiction: bool  #: whether it sticks (ratio > 1)
+    validity_holds: bool  #: whether the model holds for it
+    decided: bool  #: whether its ratio lies farther from 1 than its error estimate
+    closes: bool  #: whether the switch closes under it
+
+
+class ModelFormReport(Record):
+    """The model-form check of a switch (``model_form = "check"``): would another
+    published model form change the verdict? (docs/theory.md section 12)"""
+
+    accuracy: str  #: the mode the other combinations ran in
+    robust: bool  #: every combination gives the scene's verdict
+    flips: List[str]  #: the choices that flip the verdict when changed alone
+    ratio_range: List[float]  #: [lowest, highest] pull-out ratio over the combinations
+    runs: List[ModelFormRun]  #: one per combination, the scene's own first
+    excluded: List[Dict[str, Any]]  #: values and combinations left out, with the reason
+    summary: str  #: the verdict in words
 
 
 class ElasticComparison(Record):
@@ -570,6 +596,7 @@ class SwitchResult(Record):
     extrapolated_fraction: float  #: asperities loaded beyond the fits' range after the last cycle
     warnings: List[ModelWarning]
     scene: Dict[str, Any]  #: the resolved scene (every key, defaults filled in)
+    model_form: Optional[ModelFormReport]  #: the model-form check (``model_form = "check"``), else None
 
     @property
     def per_cycle(self) -> Table:
@@ -728,6 +755,7 @@ class DesignMap(Record):
     points: List[MapPoint]
     warnings: List[ModelWarning]  #: guards the points raised (one per kind, with counts)
     validity: Optional[Validity]  #: whether the model holds at every point (None for a merged map)
+    model_form: Optional[Dict[str, Any]]  #: the model-form check: ``share_sticking`` per point
 
     def __init__(self, data: Mapping[str, Any], native: Any = None) -> None:
         super().__init__(data)
@@ -816,6 +844,7 @@ class ThresholdResult(Record):
     unit: Optional[str]  #: SI unit of the field
     validity: Validity
     warnings: List[ModelWarning]
+    model_form: Optional[Dict[str, Any]]  #: the model-form check: critical value per combination, ``critical_range``
 
 
 # ---------------------------------------------------------------- probability
@@ -944,6 +973,7 @@ class ProbabilityResult(Record):
     points: List[ProbabilitySample]  #: every sample, in index order
     warnings: List[ModelWarning]  #: guards the samples raised (one per kind, with counts)
     validity: Optional[Validity]  #: whether the model holds at every sample (None when read back or merged)
+    model_form: Optional[Dict[str, Any]]  #: the model-form check: P(stiction) per combination, ``stiction_probability_range``
 
     def __init__(self, data: Mapping[str, Any], native: Any = None) -> None:
         super().__init__(data)

@@ -112,3 +112,55 @@ def test_arguments_of_the_wrong_type_are_input_errors_naming_them(paper_switch):
     assert "must be unknown" not in str(e.value)
     with pytest.raises(stiction.InputError, match="a design runs a switch scene"):
         stiction.design_map(stiction.Scene.paper("surface"), ["surface.sigma_s=2e-9:1e-8:log:2"])
+
+
+def test_integers_beyond_the_librarys_range_and_a_client_that_is_none_are_input_errors(paper_switch):
+    # a huge integer is refused naming the argument, never an OverflowError on the way in;
+    # a `client` that is not a Dask client or an executor is refused naming `client`,
+    # never an AttributeError from deep inside the map
+    scatter = "switch.k_s=lognormal(1.25e10,1.3)"
+    for kwargs, name in (
+        ({"samples": 10**30}, "samples"),
+        ({"samples": 2**64}, "samples"),
+        ({"seed": 2**70}, "seed"),
+        ({"seed": 2**64}, "seed"),
+        ({"seed": -1}, "seed"),
+    ):
+        with pytest.raises(stiction.InputError, match=name):
+            stiction.design_probability(paper_switch, scatter, accuracy="fast", **kwargs)
+    with pytest.raises(stiction.InputError, match="points"):
+        stiction.md_curve(0.5, points=10**30)
+    with pytest.raises(stiction.InputError, match="points"):
+        stiction.tabulate_law(paper_switch, points=2**64)
+    for client in (object(), "tcp://127.0.0.1:8786", 3):
+        with pytest.raises(stiction.InputError, match="client"):
+            stiction.design_map(paper_switch, "surface.sigma_s=3e-9:5e-8:log:2", accuracy="fast", client=client)
+    # a scene value beyond any float (a Python int of 1400 bits), and one beyond the key's
+    # domain, are refused naming the key
+    s = stiction.Scene.paper("switch")
+    with pytest.raises(stiction.InputError, match="cycles"):
+        s.set("cycles", 10**400)
+    s.set("cycles", 10**30)
+    with pytest.raises(stiction.InputError, match="cycles"):
+        s.validate()
+
+
+def test_a_model_form_check_runs_every_credible_combination(paper_switch):
+    # issue 42: the paper's switch sticks under all 8 combinations (2 plasticity laws x 2
+    # readings of eq 1 x 2 reload rules x Maugis-Kim), with a 7 % margin at worst
+    s = stiction.Scene.paper("switch")
+    s.set("model_form", "check")
+    s.set("elastic_comparison", False)
+    s.set("contact_state", "none")
+    r = stiction.run(s, accuracy="fast")
+    m = r.model_form
+    assert isinstance(m, stiction.ModelFormReport)
+    assert m.robust and m.flips == []
+    assert len(m.runs) == 8
+    assert m.runs[0].pull_out_ratio == r.pull_out_ratio
+    lo, hi = m.ratio_range
+    assert 1.06 < lo < 1.08 and 157 < hi < 159
+    assert {e["value"] for e in m.excluded} >= {"jkr", "dmt", "hertz", "elastic"}
+    assert m.to_dict()["summary"].startswith("sticks under all 8 combinations")
+    # without the check there is none
+    assert stiction.run(stiction.Scene.paper("switch"), accuracy="fast").model_form is None

@@ -10,7 +10,7 @@ use super::{argument_error, finish, preflight, Ctx, Outputs, SceneArgs};
 use crate::error::Error;
 use crate::output::OutputSet;
 use crate::progress::Bar;
-use crate::render::{Format, Render, Validity, Warning};
+use crate::render::{self, Format, Render, Validity, Warning};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -21,7 +21,7 @@ use stiction_model::design_sweep::{
 use stiction_model::keys::Kind;
 
 /// The files `design map` and `design merge` write.
-pub const MAP_FILES: &[&str] = &["map.csv", "map.json", "map.svg"];
+pub const MAP_FILES: &[&str] = &["map.csv", "map.json", "map.svg", "model_form.json"];
 
 /// Stiction-free design: the critical value of a scene field, maps of the pull-out ratio,
 /// and the merge of sharded maps.
@@ -99,6 +99,10 @@ pub struct ThresholdCommand {
     /// the hold voltage after the last cycle; reports the window where both hold.
     #[arg(long, value_name = "QUANTITY<LIMIT")]
     pub require: Option<String>,
+    /// `check`: the critical value under every combination of the credible published
+    /// model forms too (replaces the scene's `model_form`).
+    #[arg(long, value_enum)]
+    pub model_form: Option<super::switch::ModelFormArg>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = DesignFormat::Table)]
     pub format: DesignFormat,
@@ -107,7 +111,10 @@ pub struct ThresholdCommand {
 impl ThresholdCommand {
     /// Runs the search.
     pub fn execute(&self, ctx: Ctx) -> Result<String, Error> {
-        let loaded = self.scene.load(Kind::Switch, &[])?;
+        let edits: Vec<_> = super::switch::model_form_edit(self.model_form)
+            .into_iter()
+            .collect();
+        let loaded = self.scene.load(Kind::Switch, &edits)?;
         loaded.refuse_set_of(&self.vary, "--vary")?;
         let r = design::threshold_with(
             &loaded.scene,
@@ -155,6 +162,33 @@ impl Render for ThresholdResult {
                 self.threshold.scan.len(),
                 self.validity.words()
             );
+        }
+        if let Some(m) = &self.model_form {
+            let _ = writeln!(
+                s,
+                "\nmodel form: {} (other combinations in {} mode)",
+                m.summary, m.accuracy
+            );
+            for r in &m.runs {
+                let _ = writeln!(
+                    s,
+                    "  {:<16} {:<11} {:<11} {:<12} {}{}",
+                    r.laws.plasticity,
+                    r.laws.yield_modulus,
+                    r.laws.reload,
+                    r.laws.adhesion,
+                    r.critical_value
+                        .map_or("no critical value".to_string(), |v| format!("{v:.6e}")),
+                    if r.validity_holds {
+                        ""
+                    } else {
+                        " (outside validity somewhere)"
+                    }
+                );
+            }
+            for e in &m.excluded {
+                let _ = writeln!(s, "  left out: {} {}: {}", e.choice, e.value, e.reason);
+            }
         }
         s
     }
@@ -226,6 +260,11 @@ pub struct MapCommand {
     /// the hold voltage after the last cycle; reports the window where both hold.
     #[arg(long, value_name = "QUANTITY<LIMIT")]
     pub require: Option<String>,
+    /// `check`: the same map under every combination of the credible published model
+    /// forms, and at each point the share of them under which the switch sticks
+    /// (model_form.json; replaces the scene's `model_form`).
+    #[arg(long, value_enum)]
+    pub model_form: Option<super::switch::ModelFormArg>,
 }
 
 /// A computed map with its files, for rendering.
@@ -243,6 +282,9 @@ pub struct MapReport {
     /// Whether the model holds at every point.
     #[serde(skip)]
     pub validity: Option<Validity>,
+    /// The model-form check, when asked for (written as model_form.json).
+    #[serde(skip)]
+    pub model_form: Option<stiction_model::model_form::MapModelForm>,
 }
 
 impl MapReport {
@@ -253,12 +295,16 @@ impl MapReport {
             labels: r.labels,
             warnings: r.warnings,
             validity: Some(r.validity),
+            model_form: r.model_form,
         }
     }
 
     /// The files, to be written to `dir` together.
     pub fn files(&self, dir: &Path) -> Result<OutputSet, Error> {
         let mut set = OutputSet::new(dir, MAP_FILES);
+        if let Some(m) = &self.model_form {
+            set.add("model_form.json", render::json(m));
+        }
         set.add("map.csv", self.map.to_csv()?);
         set.add("map.json", self.map.to_json());
         let svg = self.map.to_svg(&self.labels).map_err(|e| Error::Plot {
@@ -273,7 +319,10 @@ impl MapReport {
 impl MapCommand {
     /// Runs the map (or one shard of it).
     pub fn execute(&self, ctx: Ctx) -> Result<String, Error> {
-        let loaded = self.scene.load(Kind::Switch, &[])?;
+        let edits: Vec<_> = super::switch::model_form_edit(self.model_form)
+            .into_iter()
+            .collect();
+        let loaded = self.scene.load(Kind::Switch, &edits)?;
         for v in &self.vary {
             loaded.refuse_set_of(v.split('=').next().unwrap_or(v), "--vary")?;
         }
@@ -342,6 +391,19 @@ impl Render for MapReport {
                     .map(|v| v.words())
                     .unwrap_or_else(|| "outside the model's validity".into())
             );
+        }
+        if let Some(m) = &self.model_form {
+            let answered = m.share_sticking.iter().flatten().count();
+            let _ = writeln!(
+                s,
+                "\nmodel form: {} of {answered} points keep their verdict under all {} combinations (others in {} mode); the share that sticks at each point is in model_form.json",
+                m.robust_points,
+                m.combinations.len(),
+                m.accuracy
+            );
+            for e in &m.excluded {
+                let _ = writeln!(s, "  left out: {} {}: {}", e.choice, e.value, e.reason);
+            }
         }
         s
     }
@@ -420,6 +482,7 @@ impl MergeCommand {
             map,
             warnings: Vec::new(),
             validity: None,
+            model_form: None,
         };
         let mut text = report.table();
         let written = report.files(&self.out)?.commit()?;

@@ -70,6 +70,10 @@ pub struct ProbabilityCommand {
     /// Skip the exact single-field answer (a threshold search of 10 to 40 design points).
     #[arg(long)]
     pub no_exact: bool,
+    /// `check`: the same samples under every combination of the credible published model
+    /// forms, and the range of P(stiction) they give (replaces the scene's `model_form`).
+    #[arg(long, value_enum)]
+    pub model_form: Option<super::switch::ModelFormArg>,
     /// Output format on standard output.
     #[arg(long, value_enum, default_value_t = ProbabilityFormat::Table)]
     pub format: ProbabilityFormat,
@@ -88,7 +92,10 @@ impl ProbabilityCommand {
                 "a part is written to its own folder: give --out DIR (join the parts with `design merge`)",
             ));
         }
-        let loaded = self.scene.load(Kind::Switch, &[])?;
+        let edits: Vec<_> = super::switch::model_form_edit(self.model_form)
+            .into_iter()
+            .collect();
+        let loaded = self.scene.load(Kind::Switch, &edits)?;
         for v in &self.scatter {
             loaded.refuse_set_of(v.split('=').next().unwrap_or(v), "--scatter")?;
         }
@@ -142,6 +149,8 @@ pub struct ProbabilityReport {
     pub warnings: Vec<Warning>,
     /// Whether the model holds at every sample (a merge does not know).
     pub validity: Option<Validity>,
+    /// The model-form check, when asked for.
+    pub model_form: Option<stiction_model::model_form::ProbabilityModelForm>,
 }
 
 impl Serialize for ProbabilityReport {
@@ -153,10 +162,13 @@ impl Serialize for ProbabilityReport {
             run: stiction_model::design_sweep::ProbabilityView<'a>,
             #[serde(skip_serializing_if = "Option::is_none")]
             validity: Option<&'a Validity>,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            model_form: Option<&'a stiction_model::model_form::ProbabilityModelForm>,
         }
         Out {
             run: self.run.view(false),
             validity: self.validity.as_ref(),
+            model_form: self.model_form.as_ref(),
         }
         .serialize(s)
     }
@@ -170,6 +182,7 @@ impl ProbabilityReport {
             labels: r.labels,
             warnings: r.warnings,
             validity: Some(r.validity),
+            model_form: r.model_form,
         }
     }
 
@@ -181,6 +194,7 @@ impl ProbabilityReport {
             run,
             warnings: Vec::new(),
             validity: None,
+            model_form: None,
         }
     }
 
@@ -472,6 +486,27 @@ impl Render for ProbabilityReport {
                     v.words()
                 ),
             );
+        }
+        if let Some(m) = &self.model_form {
+            let _ = writeln!(
+                t,
+                "\nmodel form: {} (other combinations in {} mode, same samples)",
+                m.summary, m.accuracy
+            );
+            for r in &m.runs {
+                let _ = writeln!(
+                    t,
+                    "  {:<16} {:<11} {:<11} {:<12} {}",
+                    r.laws.plasticity,
+                    r.laws.yield_modulus,
+                    r.laws.reload,
+                    r.laws.adhesion,
+                    interval(r.stiction_probability, r.interval[0], r.interval[1])
+                );
+            }
+            for e in &m.excluded {
+                let _ = writeln!(t, "  left out: {} {}: {}", e.choice, e.value, e.reason);
+            }
         }
         t
     }

@@ -9,8 +9,9 @@ use crate::render::{self, csv_num, Format, Render, Validity, Warning};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use stiction_model::keys::{num, Kind};
+use stiction_model::model_form::{run_switch, ModelFormReport};
 use stiction_model::spec::SwitchSpec;
-use stiction_model::switch::{SwitchModel, SwitchResult};
+use stiction_model::switch::SwitchResult;
 use stiction_model::switch_1d::PressurePoint;
 use stiction_model::Accuracy;
 
@@ -36,6 +37,37 @@ impl From<AccuracyArg> for Accuracy {
             AccuracyArg::Reference => Accuracy::Reference,
         }
     }
+}
+
+/// `--model-form`: the scene's own modelling choices, or a check against the other
+/// published forms.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ModelFormArg {
+    /// The scene's own modelling choices only.
+    Single,
+    /// Also every combination of the credible published forms (plasticity law, eq-1
+    /// reading, reload rule, adhesion law by the Tabor parameter): would another change
+    /// the verdict? (docs/theory.md section 12)
+    Check,
+}
+
+/// The model-form edit of a scene: (key, value, option).
+pub fn model_form_edit(
+    a: Option<ModelFormArg>,
+) -> Option<(&'static str, toml::Value, &'static str)> {
+    a.map(|a| {
+        (
+            "model_form",
+            toml::Value::String(
+                match a {
+                    ModelFormArg::Single => "single",
+                    ModelFormArg::Check => "check",
+                }
+                .into(),
+            ),
+            "--model-form",
+        )
+    })
 }
 
 /// The accuracy edit of a scene: (key, value, option).
@@ -68,6 +100,10 @@ pub struct SwitchCommand {
     /// Accuracy mode (replaces the scene's).
     #[arg(long, value_enum)]
     pub accuracy: Option<AccuracyArg>,
+    /// `check`: also run every combination of the credible published model forms and say
+    /// whether any changes the verdict (replaces the scene's `model_form`).
+    #[arg(long, value_enum)]
+    pub model_form: Option<ModelFormArg>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Table)]
     pub format: Format,
@@ -89,6 +125,7 @@ impl SwitchCommand {
             cycles: None,
             until_accommodated: false,
             accuracy: None,
+            model_form: None,
             format: Format::Table,
             columns: false,
             out: Some(PathBuf::from("out")),
@@ -112,10 +149,11 @@ impl SwitchCommand {
             }
         }
         edits.extend(accuracy_edit(self.accuracy));
+        edits.extend(model_form_edit(self.model_form));
         let loaded = self.scene.load(Kind::Switch, &edits)?;
         let spec = SwitchSpec::new(&loaded.scene, ctx.registry).map_err(|e| loaded.blame(e))?;
         preflight(self.out.as_deref(), FILES, None)?;
-        let result = SwitchModel::build(&spec)?.run(&Bar::new())?;
+        let result = run_switch(&spec, ctx.registry, &Bar::new())?;
         let mut outputs = Outputs::default();
         if let Some(dir) = &self.out {
             let mut set = OutputSet::new(dir, FILES);
@@ -364,6 +402,9 @@ impl Render for SwitchResult {
         s += &table_cycles(self);
         s += &table_contact(self);
         s += &table_verdict(self);
+        if let Some(m) = &self.model_form {
+            s += &table_model_form(m);
+        }
         s
     }
 
@@ -648,6 +689,61 @@ fn table_contact(r: &SwitchResult) -> String {
 }
 
 /// Accommodation, the verdict, its validity and the error estimates.
+/// The model-form check: the verdict in words, then one row per combination.
+pub fn table_model_form(m: &ModelFormReport) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "\nmodel form: {} (combinations run in {} mode; flips alone: {})",
+        m.summary,
+        m.accuracy,
+        if m.flips.is_empty() {
+            "none".to_string()
+        } else {
+            m.flips.join(", ")
+        }
+    );
+    let _ = writeln!(
+        s,
+        "  ratio range {} to {}",
+        ratio_text(m.ratio_range[0]),
+        ratio_text(m.ratio_range[1])
+    );
+    let _ = writeln!(
+        s,
+        "  {:<16} {:<11} {:<11} {:<12} {:>12}  {:<8} valid",
+        "plasticity", "eq 1", "reload", "adhesion", "ratio", "verdict"
+    );
+    for r in &m.runs {
+        let _ = writeln!(
+            s,
+            "  {:<16} {:<11} {:<11} {:<12} {:>12}  {:<8} {}{}",
+            r.laws.plasticity,
+            r.laws.yield_modulus,
+            r.laws.reload,
+            r.laws.adhesion,
+            ratio_text(r.pull_out_ratio),
+            if !r.closes {
+                "no close"
+            } else if r.stiction {
+                "sticks"
+            } else {
+                "free"
+            },
+            if r.validity_holds { "yes" } else { "no" },
+            if r.decided {
+                ""
+            } else {
+                "  (within the mode's error of 1)"
+            }
+        );
+    }
+    for e in &m.excluded {
+        let _ = writeln!(s, "  left out: {} {}: {}", e.choice, e.value, e.reason);
+    }
+    s
+}
+
 fn table_verdict(r: &SwitchResult) -> String {
     let mut s = String::new();
     let _ = writeln!(s);

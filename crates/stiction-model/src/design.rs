@@ -566,6 +566,10 @@ pub struct ThresholdResult {
     /// Whether the model holds at every evaluated point (`reasons`: the checks that fail
     /// somewhere; each scan point says where in `validity_holds`).
     pub validity: Validity,
+    /// The model-form check (`model_form = "check"`): the critical value under every
+    /// combination of the credible published forms.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_form: Option<crate::model_form::ThresholdModelForm>,
 }
 
 /// The critical value of `field` in [`from`, `to`] at which the pull-out ratio after
@@ -594,6 +598,7 @@ pub fn threshold_with(
     require: Option<&str>,
 ) -> Result<ThresholdResult, ModelError> {
     let (base, spec) = base_spec(scene, registry, accuracy)?;
+    let require_text = require;
     let require = require.map(|t| requirement(t, &spec)).transpose()?;
     let f = check_field(field, &spec)?;
     for (name, v) in [("from", from), ("to", to)] {
@@ -621,6 +626,25 @@ pub fn threshold_with(
         require.as_ref(),
     )?;
     let warnings = ev.warnings(t.evaluations);
+    let model_form = spec.model_form.check.then(|| {
+        use crate::model_form::{check_accuracy, each_form, ThresholdFormRun, ThresholdModelForm};
+        let mode = check_accuracy(accuracy);
+        let (_, ran, excluded) = each_form(&spec, registry, scene, |s| {
+            threshold_with(s, registry, field, from, to, Some(mode), require_text)
+        });
+        let run_of = |r: &ThresholdResult| ThresholdFormRun {
+            laws: r.laws.clone(),
+            critical_value: r.threshold.critical_value,
+            validity_holds: r.validity.holds,
+        };
+        let mut runs = vec![ThresholdFormRun {
+            laws: crate::switch::Laws::of(&spec.contact),
+            critical_value: t.critical_value,
+            validity_holds: Validity::of(&warnings).holds,
+        }];
+        runs.extend(ran.iter().map(|(_, r)| run_of(r)));
+        ThresholdModelForm::of(mode, runs, excluded)
+    });
     Ok(ThresholdResult {
         validity: Validity::of(&warnings),
         labels: field_labels(std::iter::once(f.key)),
@@ -630,6 +654,7 @@ pub fn threshold_with(
         scene: spec.common.echo(),
         threshold: t,
         warnings,
+        model_form,
     })
 }
 
@@ -644,6 +669,9 @@ pub struct MapResult {
     pub warnings: Vec<Warning>,
     /// Whether the model holds at every point (each point says so in `validity_holds`).
     pub validity: Validity,
+    /// The model-form check (`model_form = "check"`): at each point, the share of the
+    /// combinations of the credible published forms under which the switch sticks.
+    pub model_form: Option<crate::model_form::MapModelForm>,
 }
 
 /// The request of a map: the scene with the design settings, the grid of `vary` (each
@@ -740,11 +768,49 @@ pub fn map_with(
     progress.finish();
     let map = map.with_requirement(require);
     let warnings = ev.warnings(map.points().len());
+    let (_, spec) = base_spec(scene, registry, accuracy)?;
+    let model_form = spec.model_form.check.then(|| {
+        use crate::model_form::{check_accuracy, each_form, MapModelForm};
+        let mode = check_accuracy(spec.common.accuracy);
+        let (_, ran, excluded) = each_form(&spec, registry, scene, |s| {
+            map_with(s, registry, vary, shard, Some(mode), None, &Silent)
+        });
+        let mut maps: Vec<&Map> = vec![&map];
+        maps.extend(ran.iter().map(|(_, r)| &r.map));
+        let n = map.points().len();
+        let mut share = vec![None; n];
+        let mut robust_points = 0;
+        for (i, slot) in share.iter_mut().enumerate() {
+            let verdicts: Vec<bool> = maps
+                .iter()
+                .filter_map(|m| m.points().get(i).and_then(|p| p.ratio()))
+                .map(|ratio| ratio > 1.0)
+                .collect();
+            if verdicts.is_empty() {
+                continue;
+            }
+            let sticking = verdicts.iter().filter(|&&v| v).count();
+            *slot = Some(sticking as f64 / verdicts.len() as f64);
+            if sticking == 0 || sticking == verdicts.len() {
+                robust_points += 1;
+            }
+        }
+        let mut combinations = vec![crate::switch::Laws::of(&spec.contact)];
+        combinations.extend(ran.iter().map(|(form, _)| form.laws()));
+        MapModelForm {
+            accuracy: mode.as_str(),
+            combinations,
+            share_sticking: share,
+            robust_points,
+            excluded,
+        }
+    });
     Ok(MapResult {
         validity: Validity::of(&warnings),
         labels: map_labels(&map),
         map,
         warnings,
+        model_form,
     })
 }
 

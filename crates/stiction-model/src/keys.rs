@@ -80,12 +80,17 @@ pub enum Domain {
     Flag,
     /// Free text.
     Text,
-    /// Exactly three finite numbers (validated further by the law they parametrise).
+    /// Exactly three numbers, each finite and of magnitude at most [`TRIPLE_LIMIT`]
+    /// (validated further by the law they parametrise).
     Triple,
     /// A non-empty list of interferences in (0, 1e3 radius] (asperity `delta_max`).
     Interferences,
     /// A table of a law's own parameters (checked against the law's parameter list).
     LawTable,
+    /// A non-empty list of words of these choices (a model-form pin).
+    ChoiceList(&'static [&'static str]),
+    /// A non-empty list of registered law names (a model-form pin).
+    LawList,
 }
 
 impl Domain {
@@ -130,9 +135,15 @@ impl Domain {
             Domain::Law => "the name of a registered law".into(),
             Domain::Flag => "true or false".into(),
             Domain::Text => "text".into(),
-            Domain::Triple => "three finite numbers".into(),
+            Domain::Triple => format!(
+                "three numbers, each finite and in [{}, {}]",
+                num(-TRIPLE_LIMIT),
+                num(TRIPLE_LIMIT)
+            ),
             Domain::Interferences => "a non-empty list of values in (0, 1e3 radius]".into(),
             Domain::LawTable => "a table of the named law's parameters".into(),
+            Domain::ChoiceList(words) => format!("a non-empty list of {}", words.join(", ")),
+            Domain::LawList => "a non-empty list of registered law names".into(),
         }
     }
 
@@ -254,6 +265,12 @@ const POISSON: Domain = Domain::Range {
     open_above: true,
 };
 
+/// The largest magnitude of a number of a [`Domain::Triple`] (a law's fitted constants,
+/// such as eq 13's, of order 0.1 to 10): beyond it a constant is no fit of an asperity, and
+/// the law's radii and forces would overflow on the way (a constant of 1e308) instead of
+/// refusing the key that gave it.
+pub const TRIPLE_LIMIT: f64 = 1e6;
+
 /// The readings of eq 1.
 pub const YIELD_MODULI: &[&str] = &["as_printed", "composite"];
 /// The reload rules of an asperity pressed beyond yield.
@@ -264,6 +281,9 @@ pub const COUNTERS: &[&str] = &["rigid", "same", "material"];
 pub const ACCURACIES: &[&str] = &["accurate", "balanced", "fast", "reference"];
 /// When the contact state of a switch is computed.
 pub const CONTACT_STATES: &[&str] = &["every_cycle", "last_cycle", "none"];
+/// Whether a run is checked against the other published model forms (docs/theory.md
+/// section 12).
+pub const MODEL_FORMS: &[&str] = &["single", "check"];
 /// The scene kinds, as the optional `kind` key names them.
 pub const KINDS: &[&str] = &["asperity", "surface", "switch"];
 
@@ -286,7 +306,7 @@ pub const KEYS: &[Key] = &[
     Key { key: "contact.mean_free_path", unit: "m", domain: Domain::range(1e-11, 1e-6), default: Default::RequiredWhen("resistivity"), help: "electron mean free path lambda of the films (Sharvin-Holm interpolation; needed with resistivity); Au 37.7e-9, Ru 6.6e-9 (Gall 2016)", scenes: SWITCH },
     Key { key: "contact.adhesion_law", unit: "", domain: Domain::Law, default: Default::Word("maugis_kim"), help: "adhesion law of one asperity (built in: maugis_kim, jkr, dmt, hertz); its own parameters in [contact.adhesion]", scenes: ALL },
     Key { key: "contact.plasticity_law", unit: "", domain: Domain::Law, default: Default::Word("etsion_kadin"), help: "plasticity law of one asperity (built in: etsion_kadin, kogut_etsion, elastic); its own parameters in [contact.plasticity]", scenes: ALL },
-    Key { key: "contact.yield_modulus", unit: "", domain: Domain::Choice(YIELD_MODULI), default: Default::Required, help: "the modulus of eq 1 (required): \"as_printed\" uses the film's E as the paper prints it (its scenes); \"composite\" uses the pair's E* (Kogut-Etsion). About 100x on the paper switch's pull-out", scenes: ALL },
+    Key { key: "contact.yield_modulus", unit: "", domain: Domain::Choice(YIELD_MODULI), default: Default::Required, help: "the modulus of eq 1 (required): \"as_printed\" uses the film's E as the paper prints it (its scenes); \"composite\" uses the pair's E* (Kogut-Etsion), as the fits' sources define the yield onset (recommended for new scenes, theory 12.3). About 100x on the paper switch's pull-out; model_form = \"check\" shows whether it decides the verdict", scenes: ALL },
     Key { key: "contact.reload", unit: "", domain: Domain::Choice(RELOADS), default: Default::Word("as_printed"), help: "reload and unload of a yielded asperity: \"as_printed\" follows eq 12 as the paper prints it (stiffer than virgin loading beyond about 16 delta_CP, theory 2.5); \"bounded\" caps the force at the virgin loading force at the same interference (recommended for new scenes, soft films above all)", scenes: ALL },
     Key { key: "contact.adhesion", unit: "", domain: Domain::LawTable, default: Default::Absent, help: "parameters of the adhesion law, if it takes any (the built-in laws take none: w and z0 above)", scenes: ALL },
     Key { key: "contact.plasticity", unit: "", domain: Domain::LawTable, default: Default::Absent, help: "parameters of the plasticity law (etsion_kadin: c1, c2 of eq 13, also accepted as [contact.effective_radius])", scenes: ALL },
@@ -302,6 +322,11 @@ pub const KEYS: &[Key] = &[
     Key { key: "until_accommodated", unit: "", domain: Domain::Flag, default: Default::Flag(false), help: "stop once accommodated", scenes: SWITCH },
     Key { key: "accommodation_tolerance", unit: "-", domain: Domain::above(0.0, 0.1), default: Default::Number(1e-3), help: "relative change of pull-out (and of d_e in sigma_s) below which the next cycle counts as accommodated", scenes: SWITCH },
     Key { key: "contact_state", unit: "", domain: Domain::Choice(CONTACT_STATES), default: Default::Word("every_cycle"), help: "when the contact state (rest under the hold voltage, real contact area, spots, contact resistance) is computed: every_cycle, last_cycle (design points) or none", scenes: SWITCH },
+    Key { key: "model_form", unit: "", domain: Domain::Choice(MODEL_FORMS), default: Default::Word("single"), help: "single: the scene's own modelling choices; check: the run is repeated under every combination of the credible published forms (plasticity law, eq-1 reading, reload rule, adhesion law by the Tabor parameter) and the report says whether any changes the verdict (theory 12)", scenes: SWITCH },
+    Key { key: "model_form_plasticity", unit: "", domain: Domain::LawList, default: Default::Absent, help: "pins the plasticity laws a model-form check tries (default: the scene's and every registered plastic law)", scenes: SWITCH },
+    Key { key: "model_form_yield_modulus", unit: "", domain: Domain::ChoiceList(YIELD_MODULI), default: Default::Absent, help: "pins the eq-1 readings a model-form check tries (default: both)", scenes: SWITCH },
+    Key { key: "model_form_reload", unit: "", domain: Domain::ChoiceList(RELOADS), default: Default::Absent, help: "pins the reload rules a model-form check tries (default: both)", scenes: SWITCH },
+    Key { key: "model_form_adhesion", unit: "", domain: Domain::LawList, default: Default::Absent, help: "pins the adhesion laws a model-form check tries (default: the scene's, maugis_kim, jkr where lambda >= 5, dmt where lambda <= 0.1)", scenes: SWITCH },
     Key { key: "elastic_comparison", unit: "", domain: Domain::Flag, default: Default::Flag(true), help: "also run the surface with elastic asperities (one cycle)", scenes: SWITCH },
     Key { key: "switch.d0", unit: "m", domain: Domain::range(1e-9, 1e-3), default: Default::Required, help: "initial air gap d0", scenes: SWITCH },
     Key { key: "switch.t_d", unit: "m", domain: Domain::range(1e-10, 1e-3), default: Default::Required, help: "dielectric thickness t_d", scenes: SWITCH },

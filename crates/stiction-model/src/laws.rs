@@ -148,6 +148,7 @@ pub struct AdhesionEntry {
     summary: String,
     params: Vec<Param>,
     build: Arc<AdhesionBuild>,
+    credible: bool,
 }
 
 /// A registered plasticity law.
@@ -157,6 +158,7 @@ pub struct PlasticityEntry {
     summary: String,
     params: Vec<Param>,
     build: Arc<PlasticityBuild>,
+    credible: bool,
 }
 
 macro_rules! entry_common {
@@ -175,7 +177,21 @@ macro_rules! entry_common {
                     summary: summary.into(),
                     params,
                     build: Arc::new(build),
+                    credible: true,
                 }
+            }
+
+            /// The entry marked as no credible alternative form for a model-form check
+            /// (a plasticity law that never yields); entries are credible by default.
+            pub fn not_credible(mut self) -> Self {
+                self.credible = false;
+                self
+            }
+
+            /// Whether a model-form check tries this law as an alternative
+            /// ([`crate::model_form`]).
+            pub fn credible(&self) -> bool {
+                self.credible
             }
 
             /// The name scenes give.
@@ -391,7 +407,8 @@ fn builtin_plasticity() -> Vec<PlasticityEntry> {
             "never yields: the asperity keeps its radius and height",
             vec![],
             |ctx| Ok(Arc::new(Elastic::new(ctx.pair.radius())?)),
-        ),
+        )
+        .not_credible(),
     ]
 }
 

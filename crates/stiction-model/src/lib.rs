@@ -49,6 +49,7 @@ pub mod keys;
 pub mod law;
 pub mod laws;
 pub mod md;
+pub mod model_form;
 pub mod ohmic;
 pub mod probability;
 pub mod scene;

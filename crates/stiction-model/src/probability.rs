@@ -101,6 +101,9 @@ pub struct ProbabilityResult {
     pub warnings: Vec<Warning>,
     /// Whether the model holds at every sample (those outside are counted apart).
     pub validity: Validity,
+    /// The model-form check (`model_form = "check"`): P(stiction) under every combination
+    /// of the credible published forms.
+    pub model_form: Option<crate::model_form::ProbabilityModelForm>,
 }
 
 impl Serialize for ProbabilityResult {
@@ -111,10 +114,13 @@ impl Serialize for ProbabilityResult {
             #[serde(flatten)]
             run: design_sweep::ProbabilityView<'a>,
             validity: &'a Validity,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            model_form: Option<&'a crate::model_form::ProbabilityModelForm>,
         }
         Out {
             run: self.probability.view(false),
             validity: &self.validity,
+            model_form: self.model_form.as_ref(),
         }
         .serialize(s)
     }
@@ -286,12 +292,50 @@ pub fn run(
             run.summary().samples
         ));
     }
+    let model_form = model_form_check(scene, registry, request, &run)?;
     Ok(ProbabilityResult {
         validity: Validity::of(&warnings),
         labels,
         probability: run,
         warnings,
+        model_form,
     })
+}
+
+/// The model-form check of a probability run whose scene asks for it: the same samples
+/// (the same seed) under every other combination of the credible published forms, in the
+/// check's mode, without the exact answer; None when the scene does not ask.
+fn model_form_check(
+    scene: &Scene,
+    registry: &LawRegistry,
+    request: &ProbabilityRequest,
+    own: &Probability,
+) -> Result<Option<crate::model_form::ProbabilityModelForm>, ModelError> {
+    use crate::model_form::{check_accuracy, each_form, ProbabilityFormRun, ProbabilityModelForm};
+    let (_, spec) = crate::design::base_spec(scene, registry, request.accuracy)?;
+    if !spec.model_form.check {
+        return Ok(None);
+    }
+    let mode = check_accuracy(spec.common.accuracy);
+    let of = |laws: crate::switch::Laws, p: &Probability| {
+        let s = p.summary();
+        ProbabilityFormRun {
+            laws,
+            stiction_probability: s.stiction_probability,
+            interval: [s.ci_low, s.ci_high],
+        }
+    };
+    let alternative = ProbabilityRequest {
+        accuracy: Some(mode),
+        exact: false,
+        ..request.clone()
+    };
+    let (_, ran, excluded) = each_form(&spec, registry, scene, |s| {
+        run(s, registry, &alternative, &crate::Silent)
+    });
+    let mut runs = vec![of(crate::switch::Laws::of(&spec.contact), own)];
+    runs.extend(ran.iter().map(|(form, r)| of(form.laws(), &r.probability)));
+    Ok(Some(ProbabilityModelForm::of(mode, runs, excluded)))
 }
 
 /// The exact single-field answer on the design scene `base`: the threshold of the field

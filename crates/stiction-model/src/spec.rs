@@ -303,6 +303,8 @@ pub struct SwitchSpec {
     pub elastic_comparison: bool,
     /// When the contact state is computed.
     pub contact_states: ContactStates,
+    /// The model-form check (`model_form` and its pins).
+    pub model_form: crate::model_form::ModelFormSpec,
 }
 
 /// Any validated scene.
@@ -351,7 +353,6 @@ impl AsperitySpec {
     pub fn new(scene: &Scene, registry: &LawRegistry) -> Result<Self, ModelError> {
         let mut r = Reader::new(scene, Kind::Asperity);
         let contact = r.contact(registry)?;
-        let hi = 1e3 * contact.radius;
         let key = "delta_max";
         let delta_max = match r.take(key) {
             None => return Err(r.missing(key).into()),
@@ -359,12 +360,12 @@ impl AsperitySpec {
                 let mut out = Vec::with_capacity(a.len());
                 for (i, v) in a.iter().enumerate() {
                     let d = as_number(v).unwrap_or(f64::NAN);
-                    if !(d.is_finite() && d > 0.0 && d <= hi) {
+                    if !delta_max_within(d, contact.radius) {
                         return Err(r
                             .fail(
                                 &format!("{key}[{i}]"),
                                 show(v),
-                                format!("finite and in (0, {}] (1e3 radius)", num(hi)),
+                                delta_max_domain(contact.radius),
                             )
                             .into());
                     }
@@ -459,6 +460,7 @@ impl SwitchSpec {
             "none" => ContactStates::None,
             _ => ContactStates::EveryCycle,
         };
+        let model_form = r.model_form(registry)?;
         let common = r.common(0)?;
         // every cycle writes its curves and the whole result is held for rendering: bound
         // it up front rather than fail on memory after the computation
@@ -489,6 +491,7 @@ impl SwitchSpec {
             accommodation_tolerance,
             elastic_comparison,
             contact_states,
+            model_form,
         })
     }
 }
@@ -506,6 +509,37 @@ struct Reader<'a> {
     kind: Kind,
     used: BTreeSet<String>,
     resolved: toml::Table,
+}
+
+/// The deepest maximum interference of an asperity, in tip radii: `delta_max` lies in
+/// (0, 1e3 R], in an asperity scene and in every front end's argument of that name.
+pub const DELTA_MAX_RADII: f64 = 1e3;
+
+fn delta_max_within(delta_max: f64, radius: f64) -> bool {
+    delta_max.is_finite() && delta_max > 0.0 && delta_max <= DELTA_MAX_RADII * radius
+}
+
+fn delta_max_domain(radius: f64) -> String {
+    format!(
+        "finite and in (0, {}] (1e3 radius)",
+        num(DELTA_MAX_RADII * radius)
+    )
+}
+
+/// Checks a maximum interference `delta_max` (m) of an asperity of tip radius `radius`
+/// (m) against the domain of the asperity scene's `delta_max`: finite and in
+/// (0, 1e3 radius]. The one check of every front end that takes a `delta_max` as an
+/// argument (the Python `Asperity`): an argument error named `name` otherwise.
+pub fn check_delta_max(name: &str, delta_max: f64, radius: f64) -> Result<(), ModelError> {
+    if delta_max_within(delta_max, radius) {
+        Ok(())
+    } else {
+        Err(ModelError::argument(
+            name,
+            num(delta_max),
+            delta_max_domain(radius),
+        ))
+    }
 }
 
 fn as_number(v: &toml::Value) -> Option<f64> {
@@ -731,6 +765,68 @@ impl<'a> Reader<'a> {
         }
         self.record(key, toml::Value::String(w.clone()));
         Ok(Some(w))
+    }
+
+    /// A list of words of the registry (a [`Domain::ChoiceList`] checked here, a
+    /// [`Domain::LawList`] against `laws`), absent as None.
+    fn word_list(&mut self, key: &str, laws: &[&str]) -> Result<Option<Vec<String>>, SceneError> {
+        let k = self.registry_key(key);
+        let Some(v) = self.take(key) else {
+            return Ok(None);
+        };
+        let words: Option<Vec<String>> = match &v {
+            toml::Value::Array(a) if !a.is_empty() => {
+                a.iter().map(|x| x.as_str().map(str::to_string)).collect()
+            }
+            _ => None,
+        };
+        let Some(words) = words else {
+            return Err(self.fail(key, show(&v), k.domain.describe()));
+        };
+        let allowed: Vec<&str> = match k.domain {
+            Domain::ChoiceList(w) => w.to_vec(),
+            _ => laws.to_vec(),
+        };
+        for w in &words {
+            if !allowed.contains(&w.as_str()) {
+                return Err(self.fail(
+                    key,
+                    format!("\"{w}\""),
+                    format!("{}: one of {}", k.domain.describe(), allowed.join(", ")),
+                ));
+            }
+        }
+        self.record(
+            key,
+            toml::Value::Array(
+                words
+                    .iter()
+                    .map(|w| toml::Value::String(w.clone()))
+                    .collect(),
+            ),
+        );
+        Ok(Some(words))
+    }
+
+    /// `model_form` and its pins.
+    fn model_form(
+        &mut self,
+        registry: &LawRegistry,
+    ) -> Result<crate::model_form::ModelFormSpec, SceneError> {
+        use crate::model_form::Choice;
+        let check = self.required_word("model_form")? == "check";
+        let mut pins = Vec::new();
+        for c in Choice::ALL {
+            let laws = match c {
+                Choice::Plasticity => registry.plasticity_names(),
+                Choice::Adhesion => registry.adhesion_names(),
+                _ => Vec::new(),
+            };
+            if let Some(words) = self.word_list(c.pin_key(), &laws)? {
+                pins.push((c, words));
+            }
+        }
+        Ok(crate::model_form::ModelFormSpec { check, pins })
     }
 
     fn required_word(&mut self, key: &str) -> Result<String, SceneError> {
@@ -1248,7 +1344,16 @@ impl<'a> Reader<'a> {
                 toml::Value::Array(a) if a.len() == 3 => {
                     let mut t = [0.0; 3];
                     for (i, x) in a.iter().enumerate() {
-                        t[i] = as_number(x).filter(|x| x.is_finite()).ok_or_else(bad)?;
+                        let n = as_number(x).ok_or_else(bad)?;
+                        // the number at fault named by its place (`c1[0]`), as a law names it
+                        if !(n.is_finite() && n.abs() <= keys::TRIPLE_LIMIT) {
+                            return Err(self.fail(
+                                &format!("{key}[{i}]"),
+                                num(n),
+                                p.domain.describe(),
+                            ));
+                        }
+                        t[i] = n;
                     }
                     ParamValue::Triple(t)
                 }

@@ -201,7 +201,9 @@ pub struct CycleResult {
     pub hold: Option<ContactState>,
     /// `rests` (on the unloading branch), `deeper_than_impact` (the hold presses further
     /// than the impact did), `opens` (the spring outweighs the hold and the contact's
-    /// pull-out: no rest) or `not_computed` (`contact_state`).
+    /// pull-out: no rest), `not_computed` (`contact_state`) or `not_computable` (the rest
+    /// could not be found, e.g. a hold the surface cannot bear: warning
+    /// `side_quantity_not_computed`).
     pub hold_status: &'static str,
     /// The contact at the end of impact, d_e (null when not computed).
     pub end_of_impact: Option<ContactState>,
@@ -387,6 +389,10 @@ pub struct SwitchResult {
     pub warnings: Vec<Warning>,
     /// The resolved scene.
     pub scene: serde_json::Value,
+    /// The model-form check, when the scene asks for it (`model_form = "check"`):
+    /// whether another published model form changes the verdict.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_form: Option<crate::model_form::ModelFormReport>,
 }
 
 /// A switch scene's model, built once: the electrostatics, the rough surface of the
@@ -506,12 +512,19 @@ impl<'a> SwitchModel<'a> {
             },
         );
         let run = run?;
-        result.elastic = elastic?;
-        result.warnings = physics_guards(s, &gw, &run)?;
+        // the cycles and the verdict stand on their own: a quantity computed beside them
+        // that fails (the elastic comparison, a guard's check, a contact state) is absent,
+        // with a warning saying which and why, instead of losing the run
+        let mut not_computed = Vec::new();
+        result.elastic = elastic.unwrap_or_else(|e| {
+            not_computed.push(side_quantity_failed("the elastic comparison", &e));
+            None
+        });
+        result.warnings = physics_guards(s, &gw, &run, &mut not_computed);
         let last = run.cycles.last().expect("at least one cycle");
         result.extrapolated_fraction = guards::fit_range_max(&s.contact)
             .map_or(0.0, |hi| gw.fraction_beyond(&last.history, hi));
-        let states = self.contact_states(&gw, &run)?;
+        let states = self.contact_states(&gw, &run, &mut not_computed);
         record(&mut result, run, impact);
         for (cy, (hold, status, end)) in result.cycles.iter_mut().zip(states) {
             cy.hold = hold;
@@ -519,6 +532,16 @@ impl<'a> SwitchModel<'a> {
             cy.end_of_impact = end;
         }
         result.warnings.extend(contact_warnings(&result));
+        result.warnings.extend(guards::estimates_within_targets(
+            result.accuracy,
+            s.roughness.sigma_s,
+            1e-9 * result.restoring_pressure / result.contact_area_fraction,
+            result
+                .cycles
+                .iter()
+                .map(|c| (c.cycle, c.d_e_error, c.pull_out_pressure, c.pull_out_error)),
+        ));
+        result.warnings.extend(not_computed);
         result.validity = Validity::of(&result.warnings);
         Ok(result)
     }
@@ -596,13 +619,17 @@ impl<'a> SwitchModel<'a> {
         })
     }
 
-    /// The hold and end-of-impact states of the cycles `contact_state` asks for.
+    /// The hold and end-of-impact states of the cycles `contact_state` asks for. A state
+    /// that cannot be computed (a hold the surface cannot bear, a failed integral) is
+    /// absent (`hold_status` `not_computable` for the hold), with a warning pushed to
+    /// `not_computed`: the cycles do not depend on it.
     #[allow(clippy::type_complexity)]
     fn contact_states(
         &self,
         gw: &RoughSurface,
         run: &CycleRun<GwHistory>,
-    ) -> Result<Vec<(Option<ContactState>, &'static str, Option<ContactState>)>, ModelError> {
+        not_computed: &mut Vec<Warning>,
+    ) -> Vec<(Option<ContactState>, &'static str, Option<ContactState>)> {
         let n = run.cycles.len();
         let wanted: Vec<usize> = match self.spec.contact_states {
             ContactStates::EveryCycle => (0..n).collect(),
@@ -638,11 +665,16 @@ impl<'a> SwitchModel<'a> {
             .filter(|(i, s)| i == s)
             .map(|(&i, _)| i)
             .collect();
+        // each cycle's states and what failed of them (what, why), never an error
         let computed = contact_core::par::map(&unique, |&i| {
             let cy = &run.cycles[i];
             let d_e = cy.d_e();
             let retract = Path::Retract { from: d_e };
-            let end = self.contact_state(gw, &cy.history, d_e, retract)?;
+            let mut failed: Vec<(&'static str, ModelError)> = Vec::new();
+            let end = self
+                .contact_state(gw, &cy.history, d_e, retract)
+                .map_err(|e| failed.push(("the contact state at the end of impact", e)))
+                .ok();
             let rest = switch_1d::rest(
                 gw,
                 &cy.history,
@@ -650,26 +682,42 @@ impl<'a> SwitchModel<'a> {
                 cy.unloading.pull_out_separation,
                 hold,
                 precision,
-            )?;
-            let at = match rest {
-                switch_1d::Rest::At(d) => Some(self.contact_state(gw, &cy.history, d, retract)?),
-                switch_1d::Rest::Deeper(d) => {
-                    Some(self.contact_state(gw, &cy.history, d, Path::Approach)?)
+            )
+            .map_err(|e| failed.push(("the rest under the hold", ModelError::from(e))))
+            .ok();
+            let (at, status) = match rest {
+                None => (None, "not_computable"),
+                Some(rest) => {
+                    let at = match rest {
+                        switch_1d::Rest::At(d) => Some((d, retract)),
+                        switch_1d::Rest::Deeper(d) => Some((d, Path::Approach)),
+                        _ => None,
+                    };
+                    let state = at.and_then(|(d, path)| {
+                        self.contact_state(gw, &cy.history, d, path)
+                            .map_err(|e| failed.push(("the contact state under the hold", e)))
+                            .ok()
+                    });
+                    (state, rest.as_str())
                 }
-                _ => None,
             };
-            Ok::<_, ModelError>((i, at, rest.as_str(), end))
-        })?;
+            Ok::<_, ModelError>((i, at, status, end, failed))
+        })
+        .unwrap_or_default();
         let mut out: Vec<_> = (0..n).map(|_| (None, "not_computed", None)).collect();
-        for (i, at, status, end) in computed {
-            out[i] = (at, status, Some(end));
+        for (i, at, status, end, failed) in computed {
+            out[i] = (at, status, end);
+            for (what, e) in failed {
+                let what = format!("{what} of cycle {}", run.cycles[i].cycle);
+                not_computed.push(side_quantity_failed(&what, &e));
+            }
         }
         for (&i, &from) in wanted.iter().zip(&source) {
             if from != i {
                 out[i] = out[from].clone();
             }
         }
-        Ok(out)
+        out
     }
 
     /// The result of a scene before any cycle: the laws, the drive, the targets.
@@ -716,6 +764,7 @@ impl<'a> SwitchModel<'a> {
             extrapolated_fraction: 0.0,
             warnings: Vec::new(),
             scene: s.common.echo(),
+            model_form: None,
         }
     }
 
@@ -784,14 +833,28 @@ pub fn rough_surface(
     )?)
 }
 
+/// The warning of a quantity beside the cycles that could not be computed (`what`: "the
+/// elastic comparison", "the rest under the hold of cycle 3", ...): it is absent from the
+/// result, the cycles and the verdict stand.
+fn side_quantity_failed(what: &str, e: &ModelError) -> Warning {
+    Warning::note(
+        guards::code::NOT_COMPUTED,
+        format!(
+            "{what} could not be computed ({e}): it is absent from the result; the cycles, the pull-out and the verdict do not depend on it"
+        ),
+    )
+}
+
 /// The guards of a run: the load beyond the fits at the deepest end of impact (with the
 /// history before that cycle), adhesion that yields a virgin asperity, pressures above the
-/// hardness or the interface's strength, impacts that did not deepen.
+/// hardness or the interface's strength, impacts that did not deepen. A check that cannot
+/// be evaluated is not made, with a warning pushed to `not_computed`.
 fn physics_guards(
     s: &SwitchSpec,
     gw: &RoughSurface,
     run: &CycleRun<GwHistory>,
-) -> Result<Vec<Warning>, ModelError> {
+    not_computed: &mut Vec<Warning>,
+) -> Vec<Warning> {
     let c = &s.contact;
     let mut warnings = Vec::new();
     let deepest = run
@@ -808,10 +871,21 @@ fn physics_guards(
     };
     let at = run.cycles[deepest].d_e();
     if let Some(hi) = guards::fit_range_max(c) {
-        let share = gw.load_share_beyond(at, &before, Path::Approach, hi)?;
-        warnings.extend(guards::surface_beyond_fit(c, share, at));
+        match gw.load_share_beyond(at, &before, Path::Approach, hi) {
+            Ok(share) => warnings.extend(guards::surface_beyond_fit(c, share, at)),
+            Err(e) => not_computed.push(side_quantity_failed(
+                "the load share beyond the plasticity fits (the beyond_fit_range check)",
+                &ModelError::from(e),
+            )),
+        }
     }
-    warnings.extend(guards::adhesion_yields(c)?);
+    match guards::adhesion_yields(c) {
+        Ok(w) => warnings.extend(w),
+        Err(e) => not_computed.push(side_quantity_failed(
+            "the check whether adhesion yields an asperity (adhesion_yields_asperity)",
+            &e,
+        )),
+    }
     let compressive = run
         .cycles
         .iter()
@@ -819,7 +893,7 @@ fn physics_guards(
         .fold(0.0, f64::max);
     warnings.extend(guards::pressures(c, compressive, run.largest_pull_out));
     warnings.extend(non_deepening(s, run));
-    Ok(warnings)
+    warnings
 }
 
 /// `non_deepening_impact`: a cycle whose end of impact stopped above the deepest
