@@ -942,3 +942,163 @@ fn a_design_of_a_surface_scene_says_it_needs_a_switch_scene() {
         assert!(!err.contains("unload_from"), "{err}");
     }
 }
+
+/// Issue 42's contract on the command line: `--model-form check` on `switch`, `design
+/// threshold`, `design map` and `design probability`, its JSON keys, and the scene key.
+#[test]
+fn the_model_form_check_is_reported_by_every_command_that_takes_it() {
+    let out = stiction(&[
+        "switch",
+        "--accuracy",
+        "fast",
+        "--model-form",
+        "check",
+        "--format",
+        "json",
+    ]);
+    let v = json(&out);
+    let m = &v["model_form"];
+    assert_eq!(m["robust"], Value::Bool(true));
+    assert_eq!(m["flips"], serde_json::json!([]));
+    let runs = m["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 8);
+    for r in runs {
+        for k in ["pull_out_ratio", "stiction", "laws", "validity_holds"] {
+            assert!(r.get(k).is_some(), "runs[].{k}");
+        }
+    }
+    assert_eq!(runs[0]["pull_out_ratio"], v["pull_out_ratio"]);
+    let range = m["ratio_range"].as_array().unwrap();
+    assert!(range[0].as_f64().unwrap() < 1.1 && range[1].as_f64().unwrap() > 150.0);
+    assert!(m["excluded"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|e| e["value"] == "jkr"));
+    assert!(!has_null(&v));
+    // the table says it in words
+    let t = stiction(&["switch", "--accuracy", "fast", "--model-form", "check"]);
+    assert!(String::from_utf8_lossy(&t.stdout)
+        .contains("model form: sticks under all 8 combinations; smallest ratio 1.07"));
+    // the scene key does the same; single has no check
+    let scene = file(
+        "mf",
+        &scene_with(
+            "switch",
+            &[("accuracy", "accuracy = \"fast\"\nmodel_form = \"check\"")],
+        ),
+    );
+    let v = json(&stiction(&[
+        "switch", "--scene", &scene, "--format", "json",
+    ]));
+    assert_eq!(v["model_form"]["runs"].as_array().unwrap().len(), 8);
+    let v = json(&stiction(&[
+        "switch",
+        "--scene",
+        &scene,
+        "--model-form",
+        "single",
+        "--format",
+        "json",
+    ]));
+    assert!(v.get("model_form").is_none());
+    // a probability run: the range over the combinations
+    let v = json(&stiction(&[
+        "design",
+        "probability",
+        "--set",
+        "contact.yield_modulus=composite",
+        "--scatter",
+        "surface.sigma_s=lognormal(7.78e-9,1.1)",
+        "--samples",
+        "6",
+        "--accuracy",
+        "fast",
+        "--no-exact",
+        "--model-form",
+        "check",
+        "--format",
+        "json",
+    ]));
+    let r = v["model_form"]["stiction_probability_range"]
+        .as_array()
+        .unwrap();
+    assert!(r[0].as_f64().unwrap() <= r[1].as_f64().unwrap());
+    assert_eq!(v["model_form"]["runs"].as_array().unwrap().len(), 8);
+    // a threshold: a critical value per combination
+    let v = json(&stiction(&[
+        "design",
+        "threshold",
+        "--vary",
+        "switch.impact_energy",
+        "--from",
+        "0.05",
+        "--to",
+        "2",
+        "--accuracy",
+        "fast",
+        "--model-form",
+        "check",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["model_form"]["runs"].as_array().unwrap().len(), 8);
+    // a map: the share that sticks at each point, in model_form.json
+    let dir = temp_dir("mfmap");
+    let out = dir.join("m");
+    let o = stiction(&[
+        "design",
+        "map",
+        "--vary",
+        "surface.sigma_s=3e-9:5e-8:log:2",
+        "--accuracy",
+        "fast",
+        "--model-form",
+        "check",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mf: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("model_form.json")).unwrap())
+            .unwrap();
+    let share = mf["share_sticking"].as_array().unwrap();
+    assert_eq!(share.len(), 2);
+    for s in share {
+        let s = s.as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&s));
+    }
+}
+
+/// Issue 43 item 4: `--count-outside-validity` makes the answer over every sample that ran
+/// the headline; without it that answer is given beside (`all_samples`).
+#[test]
+fn samples_outside_validity_are_answered_over_all_samples() {
+    // a yield stress that adhesion alone exceeds: every sample outside validity
+    let args = [
+        "design",
+        "probability",
+        "--set",
+        "contact.yield_stress=3e8",
+        "--scatter",
+        "surface.sigma_s=lognormal(7.78e-9,1.1)",
+        "--samples",
+        "5",
+        "--accuracy",
+        "fast",
+        "--no-exact",
+        "--format",
+        "json",
+    ];
+    let apart = json(&stiction(&args));
+    assert!(apart.get("stiction_probability").is_none());
+    assert_eq!(apart["outside_validity"], 5);
+    let p = apart["all_samples"]["stiction"]["probability"]
+        .as_f64()
+        .unwrap();
+    let mut with: Vec<&str> = args.to_vec();
+    with.push("--count-outside-validity");
+    let counted = json(&stiction(&with));
+    assert_eq!(counted["stiction_probability"].as_f64(), Some(p));
+    assert_eq!(counted["count_outside_validity"], Value::Bool(true));
+}

@@ -250,8 +250,111 @@ type Answer = (
     Vec<(String, String, bool)>,
 );
 
+/// A worker's answer for point or sample `index` as the library's: the design point (or
+/// why there is none) and the guards it raised.
+pub(crate) fn answer_of(
+    index: usize,
+    (status, point, message, warnings): AnswerIn<'_>,
+) -> PyResult<(Result<DesignPoint, PointError>, Vec<Warning>)> {
+    let result = match (status.as_str(), point) {
+        ("ok", Some(p)) => {
+            let v = py_to_json(&p, "<answer>", "point")?;
+            let d: DesignPoint = serde_json::from_value(v).map_err(|e| {
+                argument(
+                    "answers",
+                    format!("point {index}"),
+                    format!("a design point: {e}"),
+                )
+            })?;
+            Ok(d)
+        }
+        ("out_of_domain", _) => Err(PointError::OutOfDomain(message.unwrap_or_default())),
+        _ => Err(PointError::Failed(message.unwrap_or_default())),
+    };
+    let w = warnings
+        .into_iter()
+        .map(|(c, m, b)| Warning {
+            code: static_code(&c),
+            message: m,
+            breaks_validity: b,
+        })
+        .collect();
+    Ok((result, w))
+}
+
+/// The forms of a checked design question for a cluster (`model_form = "check"`): the mode
+/// the other combinations run in, each one's form (a dict of its four choices) and scene,
+/// and what is left out (as JSON text, handed back to the `with_*_model_form` functions);
+/// None when the scene does not ask for a check.
+#[pyfunction]
+#[pyo3(signature = (scene, accuracy = None))]
+#[allow(clippy::type_complexity)]
+pub fn model_form_scenes(
+    py: Python<'_>,
+    scene: &Bound<'_, PyAny>,
+    accuracy: Option<&str>,
+) -> PyResult<
+    Option<(
+        &'static str,
+        Vec<(Py<PyAny>, crate::scene::PyScene)>,
+        String,
+    )>,
+> {
+    let scene = scene_from_py(scene)?;
+    let acc = accuracy_arg(accuracy)?;
+    let Some((mode, forms, excluded)) =
+        stiction_model::model_form::design_forms(&scene, &registry(), acc).or_raise()?
+    else {
+        return Ok(None);
+    };
+    let mut out = Vec::new();
+    for (form, s) in forms {
+        out.push((result_to_py(py, &form)?, crate::scene::PyScene { scene: s }));
+    }
+    let excluded = serde_json::to_string(&excluded)
+        .map_err(|e| argument("scene", "a check", format!("its exclusions as JSON: {e}")))?;
+    Ok(Some((mode.as_str(), out, excluded)))
+}
+
+/// A map with its model-form check from the maps of the other combinations (each with its
+/// form, as `model_form_scenes` gave it), run elsewhere: the share of the combinations that
+/// stick at each point.
+#[pyfunction]
+pub fn with_map_model_form(
+    own: &PyMap,
+    accuracy: &str,
+    forms: Vec<(Bound<'_, PyAny>, PyRef<'_, PyMap>)>,
+    excluded: &str,
+) -> PyResult<PyMap> {
+    let mode = accuracy_arg(Some(accuracy))?.unwrap_or_default();
+    let own_laws = stiction_model::model_form::form_of_echo(own.map.scene())
+        .map(|f| f.laws())
+        .ok_or_else(|| argument("own", "a map", "a map whose scene names its laws"))?;
+    let mut maps = vec![(own_laws, &own.map)];
+    let mut laws = Vec::new();
+    for (f, _) in &forms {
+        let v = py_to_json(f, "<form>", "form")?;
+        let form: stiction_model::model_form::Form = serde_json::from_value(v)
+            .map_err(|e| argument("forms", "a form", format!("a model form: {e}")))?;
+        laws.push(form.laws());
+    }
+    for (l, (_, m)) in laws.into_iter().zip(&forms) {
+        maps.push((l, &m.map));
+    }
+    let excluded = serde_json::from_str(excluded)
+        .map_err(|e| argument("excluded", "text", format!("what a check left out: {e}")))?;
+    Ok(PyMap {
+        map: own.map.clone(),
+        warnings: own.warnings.clone(),
+        validity: own.validity.clone(),
+        model_form: Some(stiction_model::model_form::MapModelForm::of(
+            mode, &maps, excluded,
+        )),
+    })
+}
+
 /// An [`Answer`] as the assembly reads it back.
-type AnswerIn<'py> = (
+pub(crate) type AnswerIn<'py> = (
     String,
     Option<Bound<'py, PyAny>>,
     Option<String>,
@@ -359,30 +462,8 @@ pub fn design_map_assemble(
                 format!("indices of the grid's {} points", request.grid.len()),
             ));
         }
-        let result = match (status.as_str(), point) {
-            ("ok", Some(p)) => {
-                let v = py_to_json(&p, "<answer>", "point")?;
-                let d: DesignPoint = serde_json::from_value(v).map_err(|e| {
-                    argument(
-                        "answers",
-                        format!("point {index}"),
-                        format!("a design point: {e}"),
-                    )
-                })?;
-                Ok(d)
-            }
-            ("out_of_domain", _) => Err(PointError::OutOfDomain(message.unwrap_or_default())),
-            _ => Err(PointError::Failed(message.unwrap_or_default())),
-        };
-        let w = warnings
-            .into_iter()
-            .map(|(c, m, b)| Warning {
-                code: static_code(&c),
-                message: m,
-                breaks_validity: b,
-            })
-            .collect();
-        got.insert(key(&request.grid, &request.grid.levels(index)), (result, w));
+        let answer = answer_of(index, (status, point, message, warnings))?;
+        got.insert(key(&request.grid, &request.grid.levels(index)), answer);
     }
     let registry = registry();
     let ev = Evaluator::new(base, &registry);

@@ -41,10 +41,21 @@ fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(design::design_map_plan, m)?)?;
     m.add_function(wrap_pyfunction!(design::design_point, m)?)?;
     m.add_function(wrap_pyfunction!(design::design_map_assemble, m)?)?;
+    m.add_function(wrap_pyfunction!(design::model_form_scenes, m)?)?;
+    m.add_function(wrap_pyfunction!(design::with_map_model_form, m)?)?;
     m.add_function(wrap_pyfunction!(design::design_merge, m)?)?;
     m.add_function(wrap_pyfunction!(design::read_map, m)?)?;
     m.add_class::<probability::PyProbability>()?;
     m.add_function(wrap_pyfunction!(probability::design_probability, m)?)?;
+    m.add_function(wrap_pyfunction!(probability::design_probability_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(
+        probability::design_probability_assemble,
+        m
+    )?)?;
+    m.add_function(wrap_pyfunction!(
+        probability::with_probability_model_form,
+        m
+    )?)?;
     m.add_function(wrap_pyfunction!(probability::design_merge_probability, m)?)?;
     m.add_function(wrap_pyfunction!(probability::read_probability, m)?)?;
     m.add_class::<contact_law::PyContactLaw>()?;

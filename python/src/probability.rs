@@ -5,7 +5,7 @@
 
 use crate::convert::result_to_py;
 use crate::design::warnings_to_py;
-use crate::errors::OrRaise;
+use crate::errors::{argument, OrRaise};
 use crate::run::accuracy_arg;
 use crate::scene::{registry, scene_from_py};
 use pyo3::prelude::*;
@@ -102,7 +102,8 @@ impl PyProbability {
     accuracy = None,
     shard = None,
     target_halfwidth = None,
-    exact = true
+    exact = true,
+    count_outside_validity = false
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn design_probability(
@@ -117,6 +118,7 @@ pub fn design_probability(
     shard: Option<String>,
     target_halfwidth: Option<f64>,
     exact: bool,
+    count_outside_validity: bool,
 ) -> PyResult<PyProbability> {
     let scene = scene_from_py(scene)?;
     let request = ProbabilityRequest {
@@ -129,6 +131,7 @@ pub fn design_probability(
         target_halfwidth,
         accuracy: accuracy_arg(accuracy)?,
         exact,
+        count_outside_validity,
     };
     let r =
         crate::pool::detach(py, move || run(&scene, &registry(), &request, &Silent)).or_raise()?;
@@ -137,6 +140,182 @@ pub fn design_probability(
         warnings: r.warnings,
         validity: Some(r.validity),
         model_form: r.model_form,
+    })
+}
+
+/// The samples of a probability request for a cluster: the design scene of every sample
+/// (TOML text) and each sample's `(index, [(field, value), ...])`, checked as
+/// `design_probability` checks them before any sample runs.
+#[pyfunction]
+#[pyo3(signature = (
+    scene,
+    scatter,
+    samples = 1000,
+    seed = 0,
+    correlate = None,
+    confidence = 0.95,
+    accuracy = None,
+    shard = None,
+    target_halfwidth = None,
+    count_outside_validity = false
+))]
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+pub fn design_probability_plan(
+    py: Python<'_>,
+    scene: &Bound<'_, PyAny>,
+    scatter: Vec<String>,
+    samples: usize,
+    seed: u64,
+    correlate: Option<Vec<String>>,
+    confidence: f64,
+    accuracy: Option<&str>,
+    shard: Option<String>,
+    target_halfwidth: Option<f64>,
+    count_outside_validity: bool,
+) -> PyResult<(String, Vec<(usize, Vec<(String, f64)>)>)> {
+    let scene = scene_from_py(scene)?;
+    let request = ProbabilityRequest {
+        scatter,
+        correlate: correlate.unwrap_or_default(),
+        samples,
+        seed,
+        confidence,
+        shard,
+        target_halfwidth,
+        accuracy: accuracy_arg(accuracy)?,
+        exact: false,
+        count_outside_validity,
+    };
+    crate::pool::detach(py, move || {
+        stiction_model::probability::samples_to_run(&scene, &registry(), &request)
+    })
+    .or_raise()
+}
+
+/// Assembles the workers' answers (`(index, answer)` per sample of the plan, as
+/// `design_point` answers) into the probability run: the library's engine records them as
+/// it records local evaluations, so the run equals `design_probability`'s (the exact
+/// single-field answer, when asked, is searched here).
+#[pyfunction]
+#[pyo3(signature = (
+    scene,
+    scatter,
+    answers,
+    samples = 1000,
+    seed = 0,
+    correlate = None,
+    confidence = 0.95,
+    accuracy = None,
+    shard = None,
+    target_halfwidth = None,
+    exact = true,
+    count_outside_validity = false
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn design_probability_assemble(
+    py: Python<'_>,
+    scene: &Bound<'_, PyAny>,
+    scatter: Vec<String>,
+    answers: &Bound<'_, pyo3::types::PyList>,
+    samples: usize,
+    seed: u64,
+    correlate: Option<Vec<String>>,
+    confidence: f64,
+    accuracy: Option<&str>,
+    shard: Option<String>,
+    target_halfwidth: Option<f64>,
+    exact: bool,
+    count_outside_validity: bool,
+) -> PyResult<PyProbability> {
+    let scene = scene_from_py(scene)?;
+    let request = ProbabilityRequest {
+        scatter,
+        correlate: correlate.unwrap_or_default(),
+        samples,
+        seed,
+        confidence,
+        shard,
+        target_halfwidth,
+        accuracy: accuracy_arg(accuracy)?,
+        exact,
+        count_outside_validity,
+    };
+    let (_, points) =
+        stiction_model::probability::samples_to_run(&scene, &registry(), &request).or_raise()?;
+    let values: std::collections::HashMap<usize, Vec<f64>> = points
+        .into_iter()
+        .map(|(i, v)| (i, v.into_iter().map(|(_, x)| x).collect()))
+        .collect();
+    let mut got = std::collections::HashMap::new();
+    for item in answers.iter() {
+        let (index, answer): (usize, crate::design::AnswerIn<'_>) = item.extract()?;
+        let Some(v) = values.get(&index) else {
+            return Err(argument(
+                "answers",
+                format!("a sample of index {index}"),
+                "the indices of the plan's samples",
+            ));
+        };
+        got.insert(
+            stiction_model::probability::answer_key(v),
+            crate::design::answer_of(index, answer)?,
+        );
+    }
+    let r = crate::pool::detach(py, move || {
+        stiction_model::probability::run_answered(
+            &scene,
+            &registry(),
+            &request,
+            &Silent,
+            Some(&got),
+        )
+    })
+    .or_raise()?;
+    Ok(PyProbability {
+        run: r.probability,
+        warnings: r.warnings,
+        validity: Some(r.validity),
+        model_form: None,
+    })
+}
+
+/// A probability run with its model-form check from the runs of the other combinations
+/// (each with its form, as `model_form_scenes` gave it), run elsewhere.
+#[pyfunction]
+pub fn with_probability_model_form(
+    own: &PyProbability,
+    accuracy: &str,
+    forms: Vec<(Bound<'_, PyAny>, PyRef<'_, PyProbability>)>,
+    excluded: &str,
+) -> PyResult<PyProbability> {
+    use stiction_model::model_form::{
+        form_of_echo, Form, ProbabilityFormRun, ProbabilityModelForm,
+    };
+    let mode = accuracy_arg(Some(accuracy))?.unwrap_or_default();
+    let of = |form: &Form, p: &Probability| {
+        let s = p.summary();
+        ProbabilityFormRun {
+            laws: form.laws(),
+            stiction_probability: s.stiction_probability,
+            interval: [s.ci_low, s.ci_high],
+        }
+    };
+    let own_form = form_of_echo(&own.run.plan().scene)
+        .ok_or_else(|| argument("own", "a run", "a run whose scene names its laws"))?;
+    let mut runs = vec![of(&own_form, &own.run)];
+    for (f, r) in &forms {
+        let v = crate::convert::py_to_json(f, "<form>", "form")?;
+        let form: Form = serde_json::from_value(v)
+            .map_err(|e| argument("forms", "a form", format!("a model form: {e}")))?;
+        runs.push(of(&form, &r.run));
+    }
+    let excluded = serde_json::from_str(excluded)
+        .map_err(|e| argument("excluded", "text", format!("what a check left out: {e}")))?;
+    Ok(PyProbability {
+        run: own.run.clone(),
+        warnings: own.warnings.clone(),
+        validity: own.validity.clone(),
+        model_form: Some(ProbabilityModelForm::of(mode, runs, excluded)),
     })
 }
 

@@ -278,7 +278,15 @@ def design_map(
         )
     from ._dask import map_on_client
 
-    return _design_map(map_on_client(client, scene, vary_list, accuracy, shard, require))
+    native = map_on_client(client, scene, vary_list, accuracy, shard, require)
+    forms = _stiction.model_form_scenes(scene, _word("accuracy", accuracy))
+    if forms is not None:
+        # the same map under every other combination of the credible published model
+        # forms, on the cluster too (each without the requirement: only its verdicts count)
+        mode, scenes, excluded = forms
+        maps = [(form, map_on_client(client, form_scene, vary_list, mode, shard, None)) for form, form_scene in scenes]
+        native = _stiction.with_map_model_form(native, mode, maps, excluded)
+    return _design_map(native)
 
 
 def design_merge(
@@ -338,6 +346,8 @@ def design_probability(
     shard: Optional[str] = None,
     target_halfwidth: Optional[float] = None,
     exact: bool = True,
+    client: Any = None,
+    count_outside_validity: bool = False,
 ) -> ProbabilityResult:
     """The probability that a switch sticks when its design fields scatter from die to
     die, as ``stiction design probability --scatter ... --samples N --seed K``.
@@ -361,7 +371,19 @@ def design_probability(
     ``.by_cycle`` (numpy columns ``cycle``, ``probability``, ``ci_low``, ``ci_high``),
     ``.does_not_close_probability``, ``.outside_validity`` (a count), ``.driver`` and
     ``.rank_correlation``, ``.exact``, and every sample in ``.points``
-    (``.values_of(field)``, ``.column("pull_out_ratio")`` as numpy arrays)."""
+    (``.values_of(field)``, ``.column("pull_out_ratio")`` as numpy arrays).
+
+    With a ``dask.distributed.Client`` (or any ``concurrent.futures.Executor``) as
+    `client`, each sample is a task on the cluster and the answers are assembled into the
+    same run (with `target_halfwidth` every sample is run, the engine stops where a local
+    run stops). A scene with ``model_form = "check"`` also runs the same samples under
+    every other combination of the credible published model forms (on the cluster too)
+    and gives ``.model_form`` with ``stiction_probability_range``.
+
+    Samples outside the model's validity are set apart (``.outside_validity``) and the
+    answer over every sample that ran is ``.all_samples`` (``stiction.probability`` with
+    its interval: a number whenever a sample ran); ``count_outside_validity=True`` makes
+    that the headline ``.stiction_probability``, as ``--count-outside-validity``."""
     scatter_list = [scatter] if isinstance(scatter, str) else list(scatter)
     if correlate is None:
         correlate_list: List[str] = []
@@ -369,20 +391,34 @@ def design_probability(
         correlate_list = [correlate]
     else:
         correlate_list = list(correlate)
-    return _probability(
-        _stiction.design_probability(
-            scene,
-            scatter_list,
-            _count("samples", samples, 1),
-            _count("seed", seed, 0, _U64_MAX),
-            correlate_list,
-            confidence,
-            _word("accuracy", accuracy),
-            _word("shard", shard),
-            target_halfwidth,
-            exact,
-        )
+    args = (
+        scatter_list,
+        _count("samples", samples, 1),
+        _count("seed", seed, 0, _U64_MAX),
+        correlate_list,
+        confidence,
+        _word("accuracy", accuracy),
+        _word("shard", shard),
+        target_halfwidth,
     )
+    if not isinstance(count_outside_validity, bool):
+        raise InputError(f"invalid count_outside_validity = {count_outside_validity!r}: must be True or False")
+    counting = count_outside_validity
+    if _client(client) is None:
+        return _probability(_stiction.design_probability(scene, *args, exact, count_outside_validity=counting))
+    from ._dask import probability_on_client
+
+    native = probability_on_client(client, scene, args, exact, counting)
+    forms = _stiction.model_form_scenes(scene, args[5])
+    if forms is not None:
+        mode, scenes, excluded = forms
+        # the other combinations: the same samples in the check's mode, no exact answer
+        runs = [
+            (form, probability_on_client(client, form_scene, args[:5] + (mode,) + args[6:], False, counting))
+            for form, form_scene in scenes
+        ]
+        native = _stiction.with_probability_model_form(native, mode, runs, excluded)
+    return _probability(native)
 
 
 def read_probability(path: PathLike) -> ProbabilityResult:

@@ -60,3 +60,34 @@ def map_on_client(
         answers = [f.result() for f in futures]
     pairs = [(index, answer) for (index, _), answer in zip(points, answers)]
     return _stiction.design_map_assemble(scene, vary, pairs, accuracy, shard, require)
+
+
+def _run_points(client: Any, base: str, points: List[Tuple[int, Any]], what: str) -> List[Any]:
+    """The answers of `points` (index, values) evaluated on `client` against `base`."""
+    if hasattr(client, "scatter") and hasattr(client, "gather"):
+        base_ref = client.scatter(base, broadcast=True, hash=False)
+        run = uuid.uuid4().hex[:12]
+        futures = [
+            client.submit(evaluate_point, base_ref, values, key=f"stiction-{what}-{run}-{index}", pure=False)
+            for index, values in points
+        ]
+        return client.gather(futures)
+    futures = [client.submit(evaluate_point, base, values) for _, values in points]
+    return [f.result() for f in futures]
+
+
+def probability_on_client(client: Any, scene: Any, args: tuple, exact: bool, count_outside_validity: bool = False) -> Any:
+    """Runs the samples of a probability request on `client` and assembles them (a
+    NativeProbability); `args` are design_probability's (scatter, samples, seed,
+    correlate, confidence, accuracy, shard, target_halfwidth)."""
+    scatter, samples, seed, correlate, confidence, accuracy, shard, target = args
+    base, points = _stiction.design_probability_plan(
+        scene, scatter, samples, seed, correlate, confidence, accuracy, shard, target,
+        count_outside_validity=count_outside_validity,
+    )
+    answers = _run_points(client, base, points, "sample") if points else []
+    pairs = [(index, answer) for (index, _), answer in zip(points, answers)]
+    return _stiction.design_probability_assemble(
+        scene, scatter, pairs, samples, seed, correlate, confidence, accuracy, shard, target, exact,
+        count_outside_validity=count_outside_validity,
+    )

@@ -949,7 +949,9 @@ class ProbabilityResult(Record):
     ci_high: float  #: its upper end
     confidence: float  #: of every interval (0.95 unless asked)
     does_not_close_probability: Optional[float]  #: P(the switch does not close)
-    outside_validity: int  #: samples outside the model's validity, counted apart
+    outside_validity: int  #: samples outside the model's validity (counted apart unless count_outside_validity)
+    count_outside_validity: bool  #: whether the headline counts the samples outside validity
+    all_samples: Dict[str, Any]  #: P over every sample that ran: ``denominator``, ``outside_validity``, ``stiction`` and ``does_not_close`` (probability, ci_low, ci_high)
     by_cycle: CycleProbabilities  #: P(stuck by cycle n) with its interval, n = 1 .. cycles
     denominator: int  #: the counted samples
     stiction: Estimate  #: the stiction estimate with its count

@@ -195,6 +195,16 @@ def design_map_assemble(
 def design_merge(parts: List[Union[NativeMap, str]]) -> NativeMap:
     """The merge of a map's shards."""
 
+def model_form_scenes(
+    scene: _SceneLike, accuracy: Optional[str] = None
+) -> Optional[Tuple[str, List[Tuple[Dict[str, str], Scene]], str]]:
+    """(mode, [(form, scene)], excluded as JSON) of a checked design question, None unchecked."""
+
+def with_map_model_form(
+    own: NativeMap, accuracy: str, forms: List[Tuple[Dict[str, str], NativeMap]], excluded: str
+) -> NativeMap:
+    """The map with its model-form check from the other combinations' maps."""
+
 def read_map(path: str) -> NativeMap:
     """A map.json."""
 
@@ -221,9 +231,45 @@ def design_probability(
     shard: Optional[str] = None,
     target_halfwidth: Optional[float] = None,
     exact: bool = True,
+    count_outside_validity: bool = False,
 ) -> NativeProbability:
     """A probability run with its samples run here (rayon): ``scatter`` FIELD=DIST in the
     field's SI unit, ``correlate`` A,B=RHO."""
+
+def design_probability_plan(
+    scene: _SceneLike,
+    scatter: Sequence[str],
+    samples: int = 1000,
+    seed: int = 0,
+    correlate: Optional[Sequence[str]] = None,
+    confidence: float = 0.95,
+    accuracy: Optional[str] = None,
+    shard: Optional[str] = None,
+    target_halfwidth: Optional[float] = None,
+    count_outside_validity: bool = False,
+) -> Tuple[str, List[Tuple[int, List[Tuple[str, float]]]]]:
+    """(design scene TOML, [(index, [(field, value)])]) of a probability run, checked."""
+
+def design_probability_assemble(
+    scene: _SceneLike,
+    scatter: Sequence[str],
+    answers: List[Tuple[int, Any]],
+    samples: int = 1000,
+    seed: int = 0,
+    correlate: Optional[Sequence[str]] = None,
+    confidence: float = 0.95,
+    accuracy: Optional[str] = None,
+    shard: Optional[str] = None,
+    target_halfwidth: Optional[float] = None,
+    exact: bool = True,
+    count_outside_validity: bool = False,
+) -> NativeProbability:
+    """The probability run of the workers' answers."""
+
+def with_probability_model_form(
+    own: NativeProbability, accuracy: str, forms: List[Tuple[Dict[str, str], NativeProbability]], excluded: str
+) -> NativeProbability:
+    """The run with its model-form check from the other combinations' runs."""
 
 def design_merge_probability(parts: List[Union[NativeProbability, str]]) -> NativeProbability:
     """The merge of a probability run's shards."""

@@ -70,6 +70,10 @@ pub struct ProbabilityCommand {
     /// Skip the exact single-field answer (a threshold search of 10 to 40 design points).
     #[arg(long)]
     pub no_exact: bool,
+    /// Count the samples outside the model's validity in the headline probabilities
+    /// (by default they are set apart; the answer over all samples is given beside).
+    #[arg(long)]
+    pub count_outside_validity: bool,
     /// `check`: the same samples under every combination of the credible published model
     /// forms, and the range of P(stiction) they give (replaces the scene's `model_form`).
     #[arg(long, value_enum)]
@@ -109,6 +113,7 @@ impl ProbabilityCommand {
             target_halfwidth: self.target_halfwidth,
             accuracy: self.accuracy.map(Into::into),
             exact: !self.no_exact,
+            count_outside_validity: self.count_outside_validity,
         };
         // everything checked before the first sample runs, the output folder included
         probability::plan(&loaded.scene, ctx.registry, &request).map_err(|e| loaded.blame(e))?;
@@ -480,10 +485,28 @@ impl Render for ProbabilityReport {
                 &mut t,
                 "validity",
                 format!(
-                    "{} of {} samples {} (counted apart)",
-                    s.counts.outside_validity,
+                    "{} of {} samples {} ({})",
+                    s.outside_validity,
                     s.samples,
-                    v.words()
+                    v.words(),
+                    if s.count_outside_validity {
+                        "counted above: --count-outside-validity"
+                    } else {
+                        "counted apart"
+                    }
+                ),
+            );
+        }
+        if s.outside_validity > 0 {
+            let a = &s.all_samples;
+            row(
+                &mut t,
+                "all samples",
+                format!(
+                    "P(stiction) {} over the {} samples that ran, {} of them outside the model's validity",
+                    interval(a.stiction.probability, a.stiction.ci_low, a.stiction.ci_high),
+                    a.denominator,
+                    a.outside_validity
                 ),
             );
         }

@@ -82,6 +82,10 @@ pub struct ProbabilityPlan {
     pub target_halfwidth: Option<f64>,
     /// The part of the samples to run; `None` runs them all.
     pub shard: Option<Shard>,
+    /// Count the samples outside the model's validity in the headline probabilities
+    /// (`--count-outside-validity`): by default they are set apart, and the all-samples
+    /// answer is given beside ([`Summary::all_samples`]).
+    pub count_outside_validity: bool,
 }
 
 impl ProbabilityPlan {
@@ -167,22 +171,34 @@ pub enum Outcome {
 }
 
 impl SamplePoint {
-    /// What the sample counts as.
+    /// What the sample counts as (outside the model's validity: apart).
     pub fn outcome(&self) -> Outcome {
+        self.outcome_counting(false)
+    }
+
+    /// What the sample counts as; with `outside_validity` a sample outside the model's
+    /// validity counts as its design says (sticks, free, does not close).
+    pub fn outcome_counting(&self, outside_validity: bool) -> Outcome {
         match (&self.status, &self.design) {
             (Status::OutOfDomain(_), _) => Outcome::OutOfDomain,
             (Status::Failed(_), _) | (_, None) => Outcome::Failed,
-            (_, Some(d)) if !d.validity_holds => Outcome::OutsideValidity,
+            (_, Some(d)) if !d.validity_holds && !outside_validity => Outcome::OutsideValidity,
             (_, Some(d)) if !d.closes => Outcome::DoesNotClose,
             (_, Some(d)) if d.sticks => Outcome::Sticks,
             _ => Outcome::Free,
         }
     }
 
-    /// Whether the sample is in the denominator of the probabilities.
+    /// Whether the sample is in the denominator of the probabilities (samples outside
+    /// the model's validity are not).
     pub fn counted(&self) -> bool {
+        self.counted_counting(false)
+    }
+
+    /// Whether the sample is in the denominator, counting those outside validity or not.
+    pub fn counted_counting(&self, outside_validity: bool) -> bool {
         matches!(
-            self.outcome(),
+            self.outcome_counting(outside_validity),
             Outcome::Sticks | Outcome::Free | Outcome::DoesNotClose
         )
     }
@@ -273,6 +289,21 @@ pub struct Counts {
     pub near_threshold: usize,
 }
 
+/// The probabilities over every sample that ran, those outside the model's validity
+/// included: defined whenever a sample ran (issue 43: a run of gold contacts, every sample
+/// outside validity, used to answer nothing).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct AllSamples {
+    /// Samples that ran (sticks, free or does not close, inside validity or not).
+    pub denominator: usize,
+    /// Of them, those outside the model's validity.
+    pub outside_validity: usize,
+    /// P(stiction) over them, with its interval.
+    pub stiction: Estimate,
+    /// P(does not close) over them.
+    pub does_not_close: Estimate,
+}
+
 /// How the run stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Stopping {
@@ -310,8 +341,14 @@ pub struct Summary {
     /// P(does not close) over the counted samples.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub does_not_close_probability: Option<f64>,
-    /// Samples outside the model's validity, counted apart.
+    /// Samples outside the model's validity (counted apart unless
+    /// `count_outside_validity`).
     pub outside_validity: usize,
+    /// Whether the headline probabilities count the samples outside the model's validity.
+    pub count_outside_validity: bool,
+    /// The probabilities over every sample that ran, inside the model's validity or not:
+    /// defined whenever a sample ran.
+    pub all_samples: AllSamples,
     /// P(stuck by cycle n), n = 1 .. the scene's cycles (empty when nothing was counted).
     pub by_cycle: Vec<CycleProbability>,
     /// The denominator: counted samples (inside validity, `ok` or `does_not_close`).
@@ -348,8 +385,22 @@ impl Summary {
             near_threshold: 0,
         };
         let mut first_cycles: Vec<usize> = Vec::new();
+        let all = plan.count_outside_validity;
+        // every sample that ran, inside validity or not
+        let (mut ran, mut ran_sticks, mut ran_dnc, mut ran_outside) = (0, 0, 0, 0);
         for p in points {
-            match p.outcome() {
+            match p.outcome_counting(true) {
+                Outcome::Sticks => ran_sticks += 1,
+                Outcome::DoesNotClose => ran_dnc += 1,
+                _ => {}
+            }
+            if p.counted_counting(true) {
+                ran += 1;
+                if p.outcome() == Outcome::OutsideValidity {
+                    ran_outside += 1;
+                }
+            }
+            match p.outcome_counting(all) {
                 Outcome::Sticks => c.sticks += 1,
                 Outcome::Free => c.free += 1,
                 Outcome::DoesNotClose => c.does_not_close += 1,
@@ -357,7 +408,7 @@ impl Summary {
                 Outcome::OutOfDomain => c.out_of_domain += 1,
                 Outcome::Failed => c.failed += 1,
             }
-            if let (true, Some(d)) = (p.counted(), &p.design) {
+            if let (true, Some(d)) = (p.counted_counting(all), &p.design) {
                 if d.closes {
                     if d.cycles_to_accommodation.is_none() {
                         c.not_accommodated += 1;
@@ -396,7 +447,7 @@ impl Summary {
         // the ratio against each field, over the counted samples that close
         let closing: Vec<&SamplePoint> = points
             .iter()
-            .filter(|p| p.counted() && p.design.is_some_and(|d| d.closes))
+            .filter(|p| p.counted_counting(all) && p.design.is_some_and(|d| d.closes))
             .collect();
         let ratios: Vec<f64> = closing
             .iter()
@@ -443,6 +494,12 @@ impl Summary {
             .and_then(|e| e.stiction_probability)
             .filter(|_| n > 0)
             .map(|p| p >= stiction.ci_low && p <= stiction.ci_high);
+        let all_samples = AllSamples {
+            denominator: ran,
+            outside_validity: ran_outside,
+            stiction: Estimate::of(ran_sticks, ran, conf),
+            does_not_close: Estimate::of(ran_dnc, ran, conf),
+        };
         Summary {
             samples: points.len(),
             stiction_probability: stiction.probability,
@@ -450,7 +507,9 @@ impl Summary {
             ci_high: stiction.ci_high,
             confidence: conf,
             does_not_close_probability: does_not_close.probability,
-            outside_validity: c.outside_validity,
+            outside_validity: ran_outside,
+            count_outside_validity: all,
+            all_samples,
             by_cycle,
             denominator: n,
             stiction,
@@ -823,10 +882,11 @@ where
             let mut points = Vec::with_capacity(total);
             for block in indices.chunks(STOP_CHECK_EVERY) {
                 points.par_extend(block.par_iter().map(|&i| one(i)));
-                let n = points.iter().filter(|p| p.counted()).count();
+                let all = plan.count_outside_validity;
+                let n = points.iter().filter(|p| p.counted_counting(all)).count();
                 let x = points
                     .iter()
-                    .filter(|p| p.outcome() == Outcome::Sticks)
+                    .filter(|p| p.outcome_counting(all) == Outcome::Sticks)
                     .count();
                 if clopper_pearson(x, n, plan.confidence).is_some_and(|(l, u)| 0.5 * (u - l) <= h) {
                     break;
@@ -952,7 +1012,10 @@ impl Probability {
             let mut row: Vec<String> = vec![p.index.to_string()];
             row.extend(p.values.iter().map(|v| format!("{v:e}")));
             row.push(p.status.word().to_owned());
-            row.push(p.counted().to_string());
+            row.push(
+                p.counted_counting(self.plan.count_outside_validity)
+                    .to_string(),
+            );
             match &p.design {
                 Some(d) => {
                     row.push(format!("{:e}", d.pull_out_ratio));
@@ -1034,6 +1097,7 @@ impl Probability {
             cycles: m.cycles,
             target_halfwidth: m.target_halfwidth,
             shard: m.shard,
+            count_outside_validity: m.count_outside_validity,
         };
         let sampler = plan.sampler()?;
         let mut points = Vec::with_capacity(m.points.len());
@@ -1342,4 +1406,6 @@ struct ProbabilityIn {
     #[serde(default)]
     exact: Option<Exact>,
     points: Vec<PointIn>,
+    #[serde(default)]
+    count_outside_validity: bool,
 }

@@ -43,6 +43,7 @@ fn plan(scatter: &[&str], samples: usize, seed: u64) -> ProbabilityPlan {
         cycles: CYCLES,
         target_halfwidth: None,
         shard: None,
+        count_outside_validity: false,
     }
 }
 
@@ -446,4 +447,47 @@ fn bad_requests_are_refused_before_any_sample_runs() {
         &|p| p.scatter.push(Scatter::parse("a.x=normal(0,1)").unwrap()),
         "scattered twice",
     );
+}
+
+/// Issue 43: a run whose every sample lies outside the model's validity (gold contacts
+/// under a law that assumes plasticity uncoupled from adhesion) sets them apart, and still
+/// answers over all samples; `count_outside_validity` makes that the headline. By hand:
+/// ratio = (3/k)^2 sticks for k < 3, k uniform on (1.5, 10): P = (3 - 1.5)/8.5.
+#[test]
+fn samples_outside_validity_are_set_apart_and_answered_over_all_samples() {
+    let outside = |v: &[(&str, f64)]| -> Result<DesignPoint, PointError> {
+        let mut d = cycled((3.0 / v[0].1).powi(2), v[0].1 * 2e-6);
+        d.validity_holds = false;
+        Ok(d)
+    };
+    let p = plan(&["switch.k_s=uniform(1.5,10)"], 400, 7);
+    let apart = run(p.clone(), outside);
+    let s = apart.summary();
+    assert_eq!(
+        s.stiction_probability, None,
+        "nothing counted inside validity"
+    );
+    assert_eq!(s.outside_validity, 400);
+    assert_eq!(s.all_samples.denominator, 400);
+    assert_eq!(s.all_samples.outside_validity, 400);
+    let all = s.all_samples.stiction.probability.expect("samples ran");
+    assert!((all - 1.5 / 8.5).abs() < 0.06, "{all}");
+    assert!(
+        s.all_samples.stiction.ci_low <= 1.5 / 8.5 && 1.5 / 8.5 <= s.all_samples.stiction.ci_high
+    );
+    let counted = run(
+        ProbabilityPlan {
+            count_outside_validity: true,
+            ..p
+        },
+        outside,
+    );
+    let c = counted.summary();
+    assert_eq!(c.stiction_probability, Some(all));
+    assert_eq!(c.denominator, 400);
+    assert_eq!(c.outside_validity, 400);
+    assert_eq!(c.all_samples, s.all_samples);
+    // the flag is part of the run: read back from its JSON, the statistics are the same
+    let back = Probability::from_json(&counted.to_json()).unwrap();
+    assert_eq!(back.summary(), c);
 }

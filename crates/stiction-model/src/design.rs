@@ -775,35 +775,10 @@ pub fn map_with(
         let (_, ran, excluded) = each_form(&spec, registry, scene, |s| {
             map_with(s, registry, vary, shard, Some(mode), None, &Silent)
         });
-        let mut maps: Vec<&Map> = vec![&map];
-        maps.extend(ran.iter().map(|(_, r)| &r.map));
-        let n = map.points().len();
-        let mut share = vec![None; n];
-        let mut robust_points = 0;
-        for (i, slot) in share.iter_mut().enumerate() {
-            let verdicts: Vec<bool> = maps
-                .iter()
-                .filter_map(|m| m.points().get(i).and_then(|p| p.ratio()))
-                .map(|ratio| ratio > 1.0)
-                .collect();
-            if verdicts.is_empty() {
-                continue;
-            }
-            let sticking = verdicts.iter().filter(|&&v| v).count();
-            *slot = Some(sticking as f64 / verdicts.len() as f64);
-            if sticking == 0 || sticking == verdicts.len() {
-                robust_points += 1;
-            }
-        }
-        let mut combinations = vec![crate::switch::Laws::of(&spec.contact)];
-        combinations.extend(ran.iter().map(|(form, _)| form.laws()));
-        MapModelForm {
-            accuracy: mode.as_str(),
-            combinations,
-            share_sticking: share,
-            robust_points,
-            excluded,
-        }
+        let mut maps: Vec<(crate::switch::Laws, &Map)> =
+            vec![(crate::switch::Laws::of(&spec.contact), &map)];
+        maps.extend(ran.iter().map(|(form, r)| (form.laws(), &r.map)));
+        MapModelForm::of(mode, &maps, excluded)
     });
     Ok(MapResult {
         validity: Validity::of(&warnings),

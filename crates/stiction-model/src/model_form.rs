@@ -110,7 +110,7 @@ impl ModelFormSpec {
 }
 
 /// One combination of the four choices.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub struct Form {
     /// Plasticity law.
     pub plasticity: String,
@@ -202,8 +202,21 @@ impl Form {
     }
 }
 
+/// The form of a resolved scene (a result's echo, as JSON: `contact.plasticity_law`, ...),
+/// if it names all four choices.
+pub fn form_of_echo(echo: &serde_json::Value) -> Option<Form> {
+    let c = echo.get("contact")?;
+    let word = |k: &str| c.get(k).and_then(|v| v.as_str()).map(str::to_string);
+    Some(Form {
+        plasticity: word("plasticity_law")?,
+        yield_modulus: word("yield_modulus")?,
+        reload: word("reload")?,
+        adhesion: word("adhesion_law")?,
+    })
+}
+
 /// A value a check leaves out, and why.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct Excluded {
     /// The choice (`adhesion`, ...), or `combination` for a whole combination that could
     /// not run.
@@ -595,6 +608,36 @@ pub fn each_form<T>(
     (forms, ran, excluded)
 }
 
+/// For a front end that runs a design question's combinations elsewhere (a cluster): when
+/// the scene asks for a check, the mode the other combinations run in, each one's form and
+/// scene ([`Form::apply`] on `scene`), and what is left out; None when it does not ask.
+/// `accuracy`: the question's mode option (else the scene's).
+#[allow(clippy::type_complexity)]
+pub fn design_forms(
+    scene: &Scene,
+    registry: &LawRegistry,
+    accuracy: Option<Accuracy>,
+) -> Result<Option<(Accuracy, Vec<(Form, Scene)>, Vec<Excluded>)>, ModelError> {
+    let (_, spec) = crate::design::base_spec(scene, registry, accuracy)?;
+    if !spec.model_form.check {
+        return Ok(None);
+    }
+    let forms = Forms::of(&spec, registry);
+    let mut excluded = forms.excluded.clone();
+    let mut out = Vec::new();
+    for form in forms.forms.into_iter().skip(1) {
+        match form.apply(scene) {
+            Ok(s) => out.push((form, s)),
+            Err(e) => excluded.push(Excluded {
+                choice: "combination".into(),
+                value: describe(&form),
+                reason: e.without_file(),
+            }),
+        }
+    }
+    Ok(Some((check_accuracy(spec.common.accuracy), out, excluded)))
+}
+
 /// One combination's answer to a threshold question.
 #[derive(Debug, Clone, Serialize)]
 pub struct ThresholdFormRun {
@@ -703,6 +746,44 @@ impl ProbabilityModelForm {
             runs,
             excluded,
             summary,
+        }
+    }
+}
+
+impl MapModelForm {
+    /// The check of the maps of the combinations (the scene's own first, each with its
+    /// laws; every map of the same grid and shard).
+    pub fn of(
+        accuracy: Accuracy,
+        maps: &[(Laws, &crate::design::Map)],
+        excluded: Vec<Excluded>,
+    ) -> Self {
+        let n = maps.first().map_or(0, |(_, m)| m.points().len());
+        let mut share = vec![None; n];
+        let mut robust_points = 0;
+        for (i, slot) in share.iter_mut().enumerate() {
+            // a switch sticks at a point where its ratio exceeds 1 (one that does not
+            // close has ratio 0); failed points have no answer
+            let verdicts: Vec<bool> = maps
+                .iter()
+                .filter_map(|(_, m)| m.points().get(i).and_then(|p| p.ratio()))
+                .map(|ratio| ratio > 1.0)
+                .collect();
+            if verdicts.is_empty() {
+                continue;
+            }
+            let sticking = verdicts.iter().filter(|&&v| v).count();
+            *slot = Some(sticking as f64 / verdicts.len() as f64);
+            if sticking == 0 || sticking == verdicts.len() {
+                robust_points += 1;
+            }
+        }
+        Self {
+            accuracy: accuracy.as_str(),
+            combinations: maps.iter().map(|(l, _)| l.clone()).collect(),
+            share_sticking: share,
+            robust_points,
+            excluded,
         }
     }
 }

@@ -36,6 +36,7 @@ pub use design_sweep::{
     Correlation, Dist, Exact, Probability, ProbabilityPlan, Scatter, Shard, Summary,
     ThresholdOptions, EXACT_TAIL, MAX_SAMPLES, STOP_CHECK_EVERY,
 };
+use design_sweep::{DesignPoint, PointError};
 use serde::Serialize;
 use std::sync::Mutex;
 
@@ -70,6 +71,10 @@ pub struct ProbabilityRequest {
     /// With a single scattered field, also compute the exact answer (a threshold search,
     /// 10 to 40 design points).
     pub exact: bool,
+    /// Count the samples outside the model's validity in the headline probabilities
+    /// (`--count-outside-validity`); by default they are set apart and the all-samples
+    /// answer is given beside (`all_samples`).
+    pub count_outside_validity: bool,
 }
 
 impl Default for ProbabilityRequest {
@@ -86,6 +91,7 @@ impl Default for ProbabilityRequest {
             target_halfwidth: None,
             accuracy: None,
             exact: true,
+            count_outside_validity: false,
         }
     }
 }
@@ -209,6 +215,7 @@ pub fn plan(
         cycles: spec.cycles,
         target_halfwidth: request.target_halfwidth,
         shard,
+        count_outside_validity: request.count_outside_validity,
     };
     // the plan's own checks, named as the request's arguments
     if !(1..=MAX_SAMPLES).contains(&request.samples) {
@@ -254,6 +261,48 @@ pub fn run(
     request: &ProbabilityRequest,
     progress: &dyn Progress,
 ) -> Result<ProbabilityResult, ModelError> {
+    run_answered(scene, registry, request, progress, None)
+}
+
+/// A sample's design point computed elsewhere (a cluster's worker, `Evaluator::result`
+/// reduced by `design::design_point`) with the guards it raised.
+pub type Answer = (Result<DesignPoint, PointError>, Vec<Warning>);
+
+/// The key of a sample's answer: the bits of its scattered values, in the plan's order.
+pub fn answer_key(values: &[f64]) -> Vec<u64> {
+    values.iter().map(|v| v.to_bits()).collect()
+}
+
+/// The samples of a plan to run elsewhere (a cluster): the design scene (the base of every
+/// sample, as TOML text) and each sample's index and (field, value) pairs, checked as
+/// [`run`] checks them before any sample runs.
+#[allow(clippy::type_complexity)]
+pub fn samples_to_run(
+    scene: &Scene,
+    registry: &LawRegistry,
+    request: &ProbabilityRequest,
+) -> Result<(String, Vec<(usize, Vec<(String, f64)>)>), ModelError> {
+    let (base, plan) = plan(scene, registry, request)?;
+    let sampler = plan.sampler()?;
+    let fields: Vec<String> = plan.scatter.iter().map(|s| s.field.clone()).collect();
+    let points = plan
+        .indices()
+        .into_iter()
+        .map(|i| (i, fields.iter().cloned().zip(sampler.values(i)).collect()))
+        .collect();
+    Ok((crate::scenegen::to_toml(&base), points))
+}
+
+/// [`run`] with the samples' design points given (`answers`, by [`answer_key`]) instead of
+/// evaluated here: the same engine records them, so the result equals a local run's (a
+/// sample without an answer is `failed`). None evaluates them here.
+pub fn run_answered(
+    scene: &Scene,
+    registry: &LawRegistry,
+    request: &ProbabilityRequest,
+    progress: &dyn Progress,
+    answers: Option<&std::collections::HashMap<Vec<u64>, Answer>>,
+) -> Result<ProbabilityResult, ModelError> {
     let (base, plan) = plan(scene, registry, request)?;
     let ev = Evaluator::new(base.clone(), registry);
     let fields: Vec<String> = plan.scatter.iter().map(|s| s.field.clone()).collect();
@@ -271,7 +320,21 @@ pub fn run(
     let done = Mutex::new(0u64);
     let run = design_sweep::run_probability(
         plan,
-        |values| ev.point(values),
+        |values: &[(&str, f64)]| match answers {
+            None => ev.point(values),
+            Some(answers) => {
+                let key = answer_key(&values.iter().map(|v| v.1).collect::<Vec<_>>());
+                match answers.get(&key) {
+                    Some((r, w)) => {
+                        ev.record(values, w);
+                        r.clone()
+                    }
+                    None => Err(PointError::Failed(
+                        "no answer came back for this sample".into(),
+                    )),
+                }
+            }
+        },
         |n, _| {
             if let Ok(mut d) = done.lock() {
                 *d = (*d).max(n as u64);
@@ -292,7 +355,11 @@ pub fn run(
             run.summary().samples
         ));
     }
-    let model_form = model_form_check(scene, registry, request, &run)?;
+    // a run answered elsewhere gets its check from the front end that ran it there
+    let model_form = match answers {
+        None => model_form_check(scene, registry, request, &run)?,
+        Some(_) => None,
+    };
     Ok(ProbabilityResult {
         validity: Validity::of(&warnings),
         labels,

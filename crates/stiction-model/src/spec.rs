@@ -187,6 +187,9 @@ pub enum Drive {
 pub struct SwitchGeometrySpec {
     /// Initial gap d0 (m).
     pub d0: f64,
+    /// The air gap at which the contact (dimples or a bump) touches (m; 0: the electrode
+    /// lands on the dielectric).
+    pub dimple_height: f64,
     /// Dielectric thickness t_d (m).
     pub t_d: f64,
     /// Relative permittivity.
@@ -884,6 +887,17 @@ impl<'a> Reader<'a> {
 
     fn switch(&mut self, film_modulus: f64) -> Result<SwitchGeometrySpec, SceneError> {
         let d0 = self.number("switch.d0")?;
+        let dimple_height = self.number("switch.dimple_height")?;
+        if !(dimple_height < d0) {
+            return Err(self.fail(
+                "switch.dimple_height",
+                num(dimple_height),
+                format!(
+                    "below d0 = {} m: the contact (dimples or a bump) must touch before the electrode meets the dielectric",
+                    num(d0)
+                ),
+            ));
+        }
         let t_d = self.number("switch.t_d")?;
         let epsilon_r = self.number("switch.epsilon_r")?;
         let epsilon_0 = self.number("switch.epsilon_0")?;
@@ -990,6 +1004,7 @@ impl<'a> Reader<'a> {
         }
         Ok(SwitchGeometrySpec {
             d0,
+            dimple_height,
             t_d,
             epsilon_r,
             epsilon_0,

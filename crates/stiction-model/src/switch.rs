@@ -70,7 +70,8 @@ pub fn electrostatics(spec: &SwitchSpec) -> Result<(Switch, Electrostatics), Mod
         t_d: g.t_d,
         epsilon_r: g.epsilon_r,
         epsilon_0: g.epsilon_0,
-    })?;
+    })?
+    .with_dimple_height(g.dimple_height)?;
     let resolved = match g.drive {
         Drive::ImpactEnergy(e) => {
             let k = sw.stiffness_for_impact_energy(e)?;
@@ -399,6 +400,7 @@ pub struct SwitchResult {
 /// scene's laws (and of elastic asperities for the comparison), the impact.
 pub struct SwitchModel<'a> {
     spec: &'a SwitchSpec,
+    sw: Switch,
     es: Electrostatics,
     floor: f64,
     /// Reload-work tables shared with other models of the same contact (plastic, elastic).
@@ -416,7 +418,7 @@ pub struct SharedTables {
 impl<'a> SwitchModel<'a> {
     /// The model of `spec`.
     pub fn build(spec: &'a SwitchSpec) -> Result<Self, ModelError> {
-        let (_, es) = electrostatics(spec)?;
+        let (sw, es) = electrostatics(spec)?;
         let phi = spec.switch.contact_area_fraction;
         // a pressure error below 1e-9 K_s d0 (per electrode area) does not matter
         let floor = spec.common.accuracy.targets().pull_out_floor_of_restoring
@@ -424,6 +426,7 @@ impl<'a> SwitchModel<'a> {
             / phi;
         Ok(Self {
             spec,
+            sw,
             es,
             floor,
             tables: None,
@@ -563,9 +566,7 @@ impl<'a> SwitchModel<'a> {
         if let (Some(f), Some(a)) = (g.hold_force, g.electrode_area) {
             return f / (g.contact_area_fraction * a);
         }
-        let gap = g.t_d / g.epsilon_r;
-        let u = self.hold_voltage();
-        let electrostatic = 0.5 * g.epsilon_0 * u * u / (gap * gap);
+        let electrostatic = self.sw.closed_electrostatic_pressure(self.hold_voltage());
         (electrostatic - self.es.restoring_pressure) / g.contact_area_fraction
     }
 
