@@ -936,3 +936,93 @@ fn a_positive_retract_tangent_is_flagged_and_the_bounded_reload_removes_it() {
         .iter()
         .any(|w| w["code"] == "positive_retract_tangent"));
 }
+
+/// Issue 46 item 5: `stiction law export` writes the virgin loading as a CalculiX/Abaqus
+/// pressure-overclosure block: `** d_ref = <value> m`, `** units:`, at most 200 rows from
+/// `0, 0`, each `pressure, overclosure`, reproducing the law at its rows.
+#[test]
+fn law_export_writes_a_pressure_overclosure_block() {
+    let law = shared_law();
+    let dir = temp_dir("law-export");
+    let out = dir.join("contact.inp");
+    let run = stiction(&[
+        "law",
+        "export",
+        "--law",
+        law.to_str().unwrap(),
+        "--format",
+        "calculix",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let d_ref: f64 = lines
+        .iter()
+        .find_map(|l| l.strip_prefix("** d_ref = ")?.strip_suffix(" m"))
+        .expect("a d_ref line")
+        .parse()
+        .unwrap();
+    assert!(lines.contains(&"** units: um, MPa"));
+    let k = lines
+        .iter()
+        .position(|l| *l == "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR")
+        .unwrap();
+    let rows: Vec<(f64, f64)> = lines[k + 1..]
+        .iter()
+        .map(|l| {
+            let v: Vec<f64> = l.split(", ").map(|x| x.parse().unwrap()).collect();
+            (v[0], v[1])
+        })
+        .collect();
+    assert!(rows.len() <= 200 && rows.len() > 10);
+    assert_eq!(rows[0], (0.0, 0.0));
+    // each row is the law's virgin pressure (MPa) at d = d_ref - h (h in um), to the 11
+    // digits a row is written with (the row's h, rounded so, moves d by 5e-11 h)
+    for &(p, h) in rows.iter().step_by(17) {
+        let d = d_ref - h * 1e-6;
+        let v = eval(law, d, None, "approach");
+        let direct = v["pressure"].as_f64().unwrap();
+        let slope = v["tangent"].as_f64().unwrap().abs();
+        let allowed = 1e-10 * direct.abs() + 1e-10 * h * 1e-6 * slope + 1e-9;
+        assert!(
+            (p * 1e6 - direct.max(0.0)).abs() <= allowed,
+            "{p} MPa at {d} m: {direct} Pa"
+        );
+    }
+    // SI on request; bad options refused by name
+    let si = dir.join("si.inp");
+    let run = stiction(&[
+        "law",
+        "export",
+        "--law",
+        law.to_str().unwrap(),
+        "--format",
+        "abaqus",
+        "--units",
+        "si",
+        "--out",
+        si.to_str().unwrap(),
+    ]);
+    assert!(run.status.success());
+    assert!(std::fs::read_to_string(&si)
+        .unwrap()
+        .contains("** units: m, Pa"));
+    let bad = stiction(&[
+        "law",
+        "export",
+        "--law",
+        law.to_str().unwrap(),
+        "--rows",
+        "1",
+        "--out",
+        si.to_str().unwrap(),
+    ]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--rows"));
+}

@@ -69,13 +69,111 @@ pub enum LawAction {
     /// Evaluate a law file: pressure (Pa, compressive positive), tangent dp/dd (Pa/m) and
     /// the history d_min (m) after the call, at one point or at many (--points-file).
     Eval(EvalCommand),
+    /// Write a law file's virgin loading as a pressure-overclosure table for an FE code's
+    /// tabular contact (`*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR`), at most 200
+    /// rows placed for linear interpolation (docs/contact-law.md section 6).
+    Export(ExportCommand),
+}
+
+/// The FE codes `stiction law export` writes for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ExportFormat {
+    /// CalculiX (ccx).
+    Calculix,
+    /// Abaqus/Standard.
+    Abaqus,
+}
+
+/// The units of `stiction law export`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ExportUnits {
+    /// Micrometres and megapascals (CalculiX moves table spacings under 1e-10 model units).
+    Um,
+    /// Metres and pascals.
+    Si,
+}
+
+/// `stiction law export`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ExportCommand {
+    /// The law file (law.json written by `stiction law`).
+    #[arg(long)]
+    pub law: PathBuf,
+    /// The FE code.
+    #[arg(long, value_enum, default_value_t = ExportFormat::Calculix)]
+    pub format: ExportFormat,
+    /// The file to write the keyword block to (an include file for the deck).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Units of the table: um (micrometres and megapascals) or si (metres and pascals).
+    #[arg(long, value_enum, default_value_t = ExportUnits::Um)]
+    pub units: ExportUnits,
+    /// Linear interpolation of the rows within this of the law, in its error metric
+    /// |p_lin - p| / (|p| + |p_pull_out| + floor), in (0, 0.1].
+    #[arg(long, default_value_t = contact_law::EXPORT_TOLERANCE, allow_hyphen_values = true)]
+    pub tolerance: f64,
+    /// The most rows, 2..200 (CalculiX resamples a node-to-surface table of more).
+    #[arg(long, default_value_t = contact_law::MAX_ROWS as i64, allow_hyphen_values = true)]
+    pub rows: i64,
+}
+
+impl ExportCommand {
+    /// Writes the block and prints what it holds.
+    pub fn execute(&self) -> Result<String, Error> {
+        if !(2..=contact_law::MAX_ROWS as i64).contains(&self.rows) {
+            return Err(Error::usage(
+                "--rows",
+                format!("{}: must be an integer in [2, 200]", self.rows),
+            ));
+        }
+        if !(self.tolerance > 0.0 && self.tolerance <= 0.1) {
+            return Err(Error::usage(
+                "--tolerance",
+                format!("{}: must be in (0, 0.1]", self.tolerance),
+            ));
+        }
+        if self.out.as_os_str() == "-" {
+            return Err(Error::usage(
+                "--out",
+                "`-`: use a file name; - (standard output) is not supported for --out",
+            ));
+        }
+        crate::output::check_file(&self.out)?;
+        let file = self.law.display().to_string();
+        let law = ContactLaw::from_path(&self.law).map_err(|source| Error::LawFile {
+            file: file.clone(),
+            source,
+        })?;
+        let table = law
+            .overclosure_table(self.tolerance, self.rows as usize)
+            .map_err(|source| Error::LawFile { file, source })?;
+        let (dialect, code) = match self.format {
+            ExportFormat::Calculix => (contact_law::InpDialect::Calculix, "CalculiX"),
+            ExportFormat::Abaqus => (contact_law::InpDialect::Abaqus, "Abaqus"),
+        };
+        let units = match self.units {
+            ExportUnits::Um => contact_law::InpUnits::MicrometreMegapascal,
+            ExportUnits::Si => contact_law::InpUnits::Si,
+        };
+        crate::output::write_file(&self.out, table.inp_block(dialect, units).as_bytes())?;
+        Ok(format!(
+            "{code} pressure-overclosure table: {} rows, d_ref = {:e} m, linear interpolation within {:.1e} of the law (largest {:.2e})\nwrote {}\n",
+            table.rows.len(),
+            table.d_ref,
+            table.tolerance,
+            table.max_error,
+            self.out.display()
+        ))
+    }
 }
 
 impl LawCommand {
     /// Runs `stiction law` or `stiction law eval`.
     pub fn execute(&self, ctx: Ctx) -> Result<String, Error> {
-        if let Some(LawAction::Eval(e)) = &self.action {
-            return e.execute();
+        match &self.action {
+            Some(LawAction::Eval(e)) => return e.execute(),
+            Some(LawAction::Export(e)) => return e.execute(),
+            None => {}
         }
         let out = self
             .out

@@ -39,6 +39,7 @@
 //! ```
 
 mod error;
+pub mod export;
 mod format;
 mod json;
 mod law;
@@ -48,6 +49,7 @@ pub mod tabulate;
 pub mod toy;
 
 pub use error::LawError;
+pub use export::{InpDialect, InpUnits, OverclosureTable, EXPORT_TOLERANCE, MAX_ROWS};
 pub use format::{FORMAT_NAME, FORMAT_VERSION, MAX_FILE_BYTES, RULE_IN_D, RULE_IN_D_MIN};
 pub use law::{
     BranchError, BranchSet, ContactLaw, Curve, Evaluation, Path, Point, PositiveRetractTangent,
