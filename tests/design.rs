@@ -1102,3 +1102,51 @@ fn samples_outside_validity_are_answered_over_all_samples() {
     assert_eq!(counted["stiction_probability"].as_f64(), Some(p));
     assert_eq!(counted["count_outside_validity"], Value::Bool(true));
 }
+
+/// A checked map sharded on the command line and merged gives the whole map's shares.
+#[test]
+fn a_checked_map_merges_its_shards_model_form_checks() {
+    let dir = temp_dir("mfshard");
+    let run = |extra: &[&str], out: &Path| {
+        let mut args = vec![
+            "design",
+            "map",
+            "--vary",
+            "surface.sigma_s=3e-9:5e-8:log:4",
+            "--accuracy",
+            "fast",
+            "--model-form",
+            "check",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = stiction(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    let (whole, a, b, merged) = (dir.join("w"), dir.join("a"), dir.join("b"), dir.join("m"));
+    run(&[], &whole);
+    run(&["--shard", "1/2"], &a);
+    run(&["--shard", "2/2"], &b);
+    let o = stiction(&[
+        "design",
+        "merge",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let read = |d: &Path| -> Value {
+        serde_json::from_str(&std::fs::read_to_string(d.join("model_form.json")).unwrap()).unwrap()
+    };
+    assert_eq!(
+        read(&merged)["share_sticking"],
+        read(&whole)["share_sticking"]
+    );
+    assert_eq!(
+        read(&merged)["robust_points"],
+        read(&whole)["robust_points"]
+    );
+    assert!(whole.join("model_form.svg").exists());
+}

@@ -477,3 +477,8 @@ def calibrate(
         )
         return CalibrationResult(_stiction.calibrate(scene, None, text, "<columns>", fit, overlay))
     return CalibrationResult(_stiction.calibrate(scene, os.fspath(fe), None, "<columns>", fit, overlay))
+
+
+def __dir__() -> List[str]:
+    """The public names (``__all__``): the helpers this module imports are not part of it."""
+    return sorted(__all__)

@@ -164,3 +164,10 @@ def test_a_model_form_check_runs_every_credible_combination(paper_switch):
     assert m.to_dict()["summary"].startswith("sticks under all 8 combinations")
     # without the check there is none
     assert stiction.run(stiction.Scene.paper("switch"), accuracy="fast").model_form is None
+
+
+def test_the_namespace_is_all():
+    # issue 46: dir(stiction) is __all__, not the helpers the module imports
+    assert set(dir(stiction)) == set(stiction.__all__)
+    for helper in ("Any", "List", "Mapping", "Optional", "np", "os", "annotations"):
+        assert helper not in dir(stiction)

@@ -346,3 +346,10 @@ def test_samples_outside_validity_still_answer_a_probability():
     assert counted.count_outside_validity is True
     with pytest.raises(stiction.InputError, match="count_outside_validity"):
         stiction.design_probability(GOLD_LIKE, scatter, samples=6, count_outside_validity="yes")
+
+
+def test_a_dimensionless_field_has_the_unit_dash(paper_switch):
+    # issue 46: ThresholdResult.unit was None for a dimensionless field
+    t = stiction.design_threshold(paper_switch, "switch.contact_area_fraction", 0.5, 1.0, accuracy="fast")
+    assert t.unit == "-"
+    assert stiction.design_threshold(paper_switch, "surface.sigma_s", 2e-9, 1e-7, accuracy="fast").unit == "m"

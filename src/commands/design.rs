@@ -21,7 +21,13 @@ use stiction_model::design_sweep::{
 use stiction_model::keys::Kind;
 
 /// The files `design map` and `design merge` write.
-pub const MAP_FILES: &[&str] = &["map.csv", "map.json", "map.svg", "model_form.json"];
+pub const MAP_FILES: &[&str] = &[
+    "map.csv",
+    "map.json",
+    "map.svg",
+    "model_form.json",
+    "model_form.svg",
+];
 
 /// Stiction-free design: the critical value of a scene field, maps of the pull-out ratio,
 /// and the merge of sharded maps.
@@ -304,6 +310,11 @@ impl MapReport {
         let mut set = OutputSet::new(dir, MAP_FILES);
         if let Some(m) = &self.model_form {
             set.add("model_form.json", render::json(m));
+            let svg = model_form_svg(&self.map, m).map_err(|message| Error::Plot {
+                path: dir.join("model_form.svg").display().to_string(),
+                message,
+            })?;
+            set.add("model_form.svg", svg);
         }
         set.add("map.csv", self.map.to_csv()?);
         set.add("map.json", self.map.to_json());
@@ -314,6 +325,110 @@ impl MapReport {
         set.add("map.svg", svg);
         Ok(set)
     }
+}
+
+/// The most lines `model_form.svg` draws for the second axis of a 2-D map (evenly chosen
+/// levels beyond it, said in the title).
+const MODEL_FORM_LINES: usize = 8;
+
+/// `model_form.svg`: the share of the combinations of the credible published forms under
+/// which the switch sticks, against the map's first field (log10 of it on a log axis, the
+/// word's position on a categorical one), one line per level of the second field (at most
+/// [`MODEL_FORM_LINES`]); 0 where every combination is free, 1 where every one sticks.
+fn model_form_svg(
+    map: &Map,
+    m: &stiction_model::model_form::MapModelForm,
+) -> Result<String, String> {
+    use stiction_model::design::Level;
+    let g = map.grid();
+    let ax = &g.axes()[0];
+    let x_of = |l: &Level<'_>| -> f64 {
+        match l {
+            Level::Number(x) if ax.spacing == stiction_model::design_sweep::Spacing::Log => {
+                x.log10()
+            }
+            Level::Number(x) => *x,
+            Level::Word(w) => ax.words.iter().position(|v| v == w).unwrap_or(0) as f64,
+        }
+    };
+    let x_label = if ax.is_categorical() {
+        let words: Vec<String> = ax
+            .words
+            .iter()
+            .enumerate()
+            .map(|(i, w)| format!("{i} = {w}"))
+            .collect();
+        format!("{} ({})", ax.field, words.join(", "))
+    } else {
+        let unit = stiction_model::design::unit(&ax.field).unwrap_or("-");
+        if ax.spacing == stiction_model::design_sweep::Spacing::Log {
+            format!("log10 {} ({unit})", ax.field)
+        } else {
+            format!("{} ({unit})", ax.field)
+        }
+    };
+    // one line per level of the second axis
+    let second = g.axes().get(1);
+    let n2 = second.map_or(1, |a| a.n);
+    let picked: Vec<usize> = if n2 <= MODEL_FORM_LINES {
+        (0..n2).collect()
+    } else {
+        let mut v: Vec<usize> = (0..MODEL_FORM_LINES)
+            .map(|k| (k * (n2 - 1) + (MODEL_FORM_LINES - 1) / 2) / (MODEL_FORM_LINES - 1))
+            .collect();
+        v.dedup();
+        v
+    };
+    let mut series = Vec::new();
+    for &j in &picked {
+        let mut points = Vec::new();
+        let mut name = String::from("share of the combinations that stick");
+        for (p, share) in map.points().iter().zip(&m.share_sticking) {
+            let idx = g.indices(p.index);
+            if second.is_some() && idx[1] != j {
+                continue;
+            }
+            let levels = g.levels(p.index);
+            if let (Some(s), Some(b)) = (share, second) {
+                name = match levels[1] {
+                    Level::Number(v) => format!("{} = {v:.4e}", b.field),
+                    Level::Word(w) => format!("{} = {w}", b.field),
+                };
+                points.push((x_of(&levels[0]), *s));
+            } else if let Some(s) = share {
+                points.push((x_of(&levels[0]), *s));
+            }
+        }
+        if !points.is_empty() {
+            series.push(crate::plot::Series { name, points });
+        }
+    }
+    let title =
+        format!(
+        "model-form check: the share of {} combinations under which the switch sticks ({} mode){}",
+        m.combinations.len(),
+        m.accuracy,
+        if picked.len() < n2 {
+            format!("; {} of {n2} levels of the second field drawn", picked.len())
+        } else {
+            String::new()
+        }
+    );
+    crate::plot::svg(
+        &title,
+        &[crate::plot::Panel {
+            caption: format!(
+                "{} of {} points keep their verdict under every combination",
+                m.robust_points,
+                m.share_sticking.iter().flatten().count()
+            ),
+            x_label,
+            y_label: "share that sticks (-)".into(),
+            series,
+            x_range: None,
+            y_range: Some((0.0, 1.0)),
+        }],
+    )
 }
 
 impl MapCommand {
@@ -475,8 +590,12 @@ impl MergeCommand {
             })?;
             parts.push((label, map));
         }
+        let checks = self.model_form_parts(&parts)?;
         preflight(Some(&self.out), MAP_FILES, None)?;
-        let map = merge(parts)?;
+        let map = merge(parts.clone())?;
+        let model_form = checks
+            .map(|c| merged_model_form(&parts, c, &map))
+            .transpose()?;
         let report = MapReport {
             labels: map_labels(&map),
             map,
@@ -485,11 +604,120 @@ impl MergeCommand {
             model_form: None,
         };
         let mut text = report.table();
-        let written = report.files(&self.out)?.commit()?;
+        let mut set = report.files(&self.out)?;
+        if let Some(v) = &model_form {
+            set.add("model_form.json", render::json(v));
+            let _ = write!(
+                text,
+                "\nmodel form: {} of {} points keep their verdict under every combination (merged from the parts' model_form.json)\n",
+                v["robust_points"],
+                v["share_sticking"].as_array().map_or(0, |a| a.iter().filter(|x| !x.is_null()).count())
+            );
+        }
+        let written = set.commit()?;
         let list: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
         let _ = write!(text, "\nwrote {}\n", list.join(", "));
         Ok(text)
     }
+}
+
+impl MergeCommand {
+    /// The parts' model-form checks (`model_form.json`, written by a checked map): all or
+    /// none of the parts have one, of the same combinations and mode.
+    fn model_form_parts(
+        &self,
+        parts: &[(String, Map)],
+    ) -> Result<Option<Vec<serde_json::Value>>, Error> {
+        let mut found = Vec::new();
+        for dir in &self.dirs {
+            let path = dir.join("model_form.json");
+            if path.symlink_metadata().is_err() {
+                continue;
+            }
+            let bad = |m: String| Error::usage("DIR", format!("{}: {m}", path.display()));
+            let meta = std::fs::metadata(&path).map_err(|e| bad(e.to_string()))?;
+            if !meta.is_file() || meta.len() > 64 << 20 {
+                return Err(bad("not a regular file of at most 64 MiB".into()));
+            }
+            let text = std::fs::read_to_string(&path).map_err(|e| bad(e.to_string()))?;
+            let v: serde_json::Value =
+                serde_json::from_str(&text).map_err(|e| bad(format!("not JSON: {e}")))?;
+            found.push(v);
+        }
+        if found.is_empty() {
+            return Ok(None);
+        }
+        if found.len() != parts.len() {
+            return Err(Error::usage(
+                "DIR",
+                format!(
+                    "{} of {} parts hold a model_form.json: the parts of one map are all checked (--model-form check) or none is",
+                    found.len(),
+                    parts.len()
+                ),
+            ));
+        }
+        for v in &found[1..] {
+            if v["combinations"] != found[0]["combinations"]
+                || v["accuracy"] != found[0]["accuracy"]
+            {
+                return Err(Error::usage(
+                    "DIR",
+                    "the parts' model-form checks ran other combinations or modes: parts of one checked map only",
+                ));
+            }
+        }
+        Ok(Some(found))
+    }
+}
+
+/// The merged map's model-form check: each part's share at each of its points, by the
+/// point's index in the grid, in the merged map's order; a point keeps its verdict under
+/// every combination where its share is 0 or 1.
+fn merged_model_form(
+    parts: &[(String, Map)],
+    checks: Vec<serde_json::Value>,
+    merged: &Map,
+) -> Result<serde_json::Value, Error> {
+    let mut share = std::collections::BTreeMap::new();
+    for ((label, map), check) in parts.iter().zip(&checks) {
+        let shares = check["share_sticking"]
+            .as_array()
+            .cloned()
+            .unwrap_or_default();
+        if shares.len() != map.points().len() {
+            return Err(Error::usage(
+                "DIR",
+                format!(
+                    "{label}: model_form.json holds {} shares for {} map points",
+                    shares.len(),
+                    map.points().len()
+                ),
+            ));
+        }
+        for (p, v) in map.points().iter().zip(shares) {
+            share.insert(p.index, v);
+        }
+    }
+    let ordered: Vec<serde_json::Value> = merged
+        .points()
+        .iter()
+        .map(|p| {
+            share
+                .get(&p.index)
+                .cloned()
+                .unwrap_or(serde_json::Value::Null)
+        })
+        .collect();
+    let robust = ordered
+        .iter()
+        .filter_map(|v| v.as_f64())
+        .filter(|&s| s == 0.0 || s == 1.0)
+        .count();
+    let mut out = checks[0].clone();
+    out["share_sticking"] = serde_json::Value::Array(ordered);
+    out["robust_points"] = serde_json::json!(robust);
+    Ok(out)
 }
 
 impl MergeCommand {

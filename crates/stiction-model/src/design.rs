@@ -648,7 +648,8 @@ pub fn threshold_with(
     Ok(ThresholdResult {
         validity: Validity::of(&warnings),
         labels: field_labels(std::iter::once(f.key)),
-        unit: unit(f.key),
+        // "-" for a dimensionless field (an absent unit read as "unknown" in Python)
+        unit: unit(f.key).or(Some("-")),
         accuracy: accuracy.as_str(),
         laws: crate::switch::Laws::of(&spec.contact),
         scene: spec.common.echo(),

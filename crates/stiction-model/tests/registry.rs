@@ -99,9 +99,11 @@ fn inside(d: Domain) -> [f64; 2] {
 }
 
 /// Keys whose inside end another rule of the same scene refuses (said by the rule's own
-/// message): the lower end of `points` where a kind needs curves.
+/// message): the lower end of `points` where a kind needs curves; a dimple height at or
+/// above the scene's gap d0 (2 um: the domain's upper end, 1 mm, is d0's own end).
 fn inside_refused_by_another_rule(kind: Kind, k: &Key, v: f64) -> bool {
-    k.key == "points" && kind != Kind::Switch && v < 2.0
+    (k.key == "points" && kind != Kind::Switch && v < 2.0)
+        || (k.key == "switch.dimple_height" && v >= 2e-6)
 }
 
 #[test]
