@@ -338,6 +338,16 @@ impl PyAsperity {
     ) -> PyResult<Py<PyAny>> {
         let d = ArrayIn::new(delta)?;
         d.finite("delta", false)?;
+        // no deeper than an asperity scene's delta_max may reach (1e3 R): beyond, the
+        // effective radius overflows inside the laws
+        let deepest = stiction_model::spec::DELTA_MAX_RADII * self.asperity.radius();
+        if let Some(&v) = d.values.iter().find(|&&v| v > deepest) {
+            return Err(crate::errors::argument(
+                "delta",
+                format!("{v:e}"),
+                format!("finite and at most 1e3 radius = {deepest:e} m"),
+            ));
+        }
         let dm = delta_max.map(ArrayIn::new).transpose()?;
         if let Some(m) = &dm {
             m.finite("delta_max", false)?;
@@ -630,6 +640,7 @@ impl PySurface {
         };
         d.finite("d", false)?;
         dm.finite("d_min", true)?;
+        within_reach_of_the_heights(self.sigma_s, &d, &dm)?;
         let p = self.eval(py, &d, &dm, path, from_, |gw, x, h, p| gw.pressure(x, h, p))?;
         array_out(py, p, &d.shape)
     }
@@ -655,6 +666,7 @@ impl PySurface {
         };
         d.finite("d", false)?;
         dm.finite("d_min", true)?;
+        within_reach_of_the_heights(self.sigma_s, &d, &dm)?;
         let e = self.eval(py, &d, &dm, path, from_, |gw, x, h, p| {
             gw.pressure_estimate(x, h, p)
         })?;
@@ -723,4 +735,21 @@ impl PySurface {
             self.accuracy.as_str()
         )
     }
+}
+
+/// Separations no deeper than 20 sigma_s below the mean plane, as `stiction surface`
+/// takes them (beyond, the Gaussian heights hold no asperity, and the asperity laws
+/// overflow): an error naming `d` or `d_min` otherwise.
+fn within_reach_of_the_heights(sigma_s: f64, d: &ArrayIn, d_min: &ArrayIn) -> PyResult<()> {
+    let lim = -20.0 * sigma_s;
+    for (name, a) in [("d", d), ("d_min", d_min)] {
+        if let Some(&v) = a.values.iter().find(|&&v| v < lim) {
+            return Err(crate::errors::argument(
+                name,
+                format!("{v:e}"),
+                format!("at least -20 sigma_s = {lim:e} m (no asperity reaches deeper)"),
+            ));
+        }
+    }
+    Ok(())
 }

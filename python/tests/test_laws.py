@@ -200,3 +200,17 @@ def test_asperity_delta_max_has_the_scenes_domain(asperity_run):
         a.state(np.array([1e-8, 1e308]))
     st = a.state(1e3 * a.radius)
     assert math.isfinite(st.r_res) and math.isfinite(st.delta_res)
+
+
+def test_separations_and_interferences_beyond_the_scenes_reach_are_refused_by_name():
+    # issue 41: a separation far below the heights, or an interference beyond 1e3 R, failed
+    # deep inside the laws ("invalid radius = inf") instead of naming the argument
+    surf = stiction.Surface(stiction.Scene.paper("switch"), accuracy="fast")
+    with pytest.raises(stiction.InputError, match="invalid d = "):
+        surf.pressure(-1e308)
+    with pytest.raises(stiction.InputError, match="invalid d_min = "):
+        surf.pressure_estimate(1e-8, d_min=-1e-3)
+    a = stiction.Asperity(stiction.Scene.paper("asperity"))
+    with pytest.raises(stiction.InputError, match="invalid delta = "):
+        a.force(1e300)
+    assert surf.pressure(1e308) == 0.0
