@@ -1150,3 +1150,65 @@ fn a_checked_map_merges_its_shards_model_form_checks() {
     );
     assert!(whole.join("model_form.svg").exists());
 }
+
+/// A checked probability run sharded on the command line and merged gives the whole run's
+/// probabilities and intervals under every combination.
+#[test]
+fn a_checked_probability_run_merges_its_shards_model_form_checks() {
+    let dir = temp_dir("mfprob");
+    let run = |extra: &[&str], out: &Path| {
+        let mut args = vec![
+            "design",
+            "probability",
+            "--set",
+            "contact.yield_modulus=composite",
+            "--scatter",
+            "surface.sigma_s=lognormal(7.78e-9,1.1)",
+            "--samples",
+            "6",
+            "--accuracy",
+            "fast",
+            "--no-exact",
+            "--model-form",
+            "check",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = stiction(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    let (whole, a, b, merged) = (dir.join("w"), dir.join("a"), dir.join("b"), dir.join("m"));
+    run(&[], &whole);
+    run(&["--shard", "1/2"], &a);
+    run(&["--shard", "2/2"], &b);
+    let o = stiction(&[
+        "design",
+        "merge",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let read = |d: &Path| -> Value {
+        serde_json::from_str(&std::fs::read_to_string(d.join("model_form.json")).unwrap()).unwrap()
+    };
+    let (m, w) = (read(&merged), read(&whole));
+    assert_eq!(
+        m["stiction_probability_range"],
+        w["stiction_probability_range"]
+    );
+    for (x, y) in m["runs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(w["runs"].as_array().unwrap())
+    {
+        assert_eq!(x["sticking"], y["sticking"]);
+        assert_eq!(x["counted"], y["counted"]);
+        assert_eq!(x["interval"], y["interval"]);
+        assert_eq!(x["laws"], y["laws"]);
+    }
+    assert_eq!(m["summary"], w["summary"]);
+}

@@ -298,6 +298,8 @@ pub fn with_probability_model_form(
             laws: form.laws(),
             stiction_probability: s.stiction_probability,
             interval: [s.ci_low, s.ci_high],
+            sticking: s.stiction.count,
+            counted: s.denominator,
         }
     };
     let own_form = form_of_echo(&own.run.plan().scene)
@@ -315,7 +317,12 @@ pub fn with_probability_model_form(
         run: own.run.clone(),
         warnings: own.warnings.clone(),
         validity: own.validity.clone(),
-        model_form: Some(ProbabilityModelForm::of(mode, runs, excluded)),
+        model_form: Some(ProbabilityModelForm::of(
+            mode,
+            own.run.summary().confidence,
+            runs,
+            excluded,
+        )),
     })
 }
 

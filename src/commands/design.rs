@@ -622,12 +622,30 @@ impl MergeCommand {
 }
 
 impl MergeCommand {
-    /// The parts' model-form checks (`model_form.json`, written by a checked map): all or
-    /// none of the parts have one, of the same combinations and mode.
+    /// The parts' model-form checks of a map: all or none of the parts have one.
     fn model_form_parts(
         &self,
         parts: &[(String, Map)],
     ) -> Result<Option<Vec<serde_json::Value>>, Error> {
+        let Some(found) = self.model_form_checks("map")? else {
+            return Ok(None);
+        };
+        if found.len() != parts.len() {
+            return Err(Error::usage(
+                "DIR",
+                format!(
+                    "{} of {} parts hold a model_form.json: the parts of one map are all checked (--model-form check) or none is",
+                    found.len(),
+                    parts.len()
+                ),
+            ));
+        }
+        Ok(Some(found))
+    }
+
+    /// The parts' `model_form.json` files (None when none has one), each a regular file of
+    /// at most 64 MiB, of the same combinations and mode; `what` names the question.
+    fn model_form_checks(&self, what: &str) -> Result<Option<Vec<serde_json::Value>>, Error> {
         let mut found = Vec::new();
         for dir in &self.dirs {
             let path = dir.join("model_form.json");
@@ -647,28 +665,84 @@ impl MergeCommand {
         if found.is_empty() {
             return Ok(None);
         }
-        if found.len() != parts.len() {
-            return Err(Error::usage(
-                "DIR",
-                format!(
-                    "{} of {} parts hold a model_form.json: the parts of one map are all checked (--model-form check) or none is",
-                    found.len(),
-                    parts.len()
-                ),
-            ));
-        }
+        // a map's check lists its combinations, a probability run's its runs' laws
+        let laws = |v: &serde_json::Value| -> serde_json::Value {
+            match v.get("combinations") {
+                Some(c) => c.clone(),
+                None => v["runs"]
+                    .as_array()
+                    .map(|r| r.iter().map(|x| x["laws"].clone()).collect())
+                    .unwrap_or_default(),
+            }
+        };
         for v in &found[1..] {
-            if v["combinations"] != found[0]["combinations"]
-                || v["accuracy"] != found[0]["accuracy"]
-            {
+            if laws(v) != laws(&found[0]) || v["accuracy"] != found[0]["accuracy"] {
                 return Err(Error::usage(
                     "DIR",
-                    "the parts' model-form checks ran other combinations or modes: parts of one checked map only",
+                    format!(
+                        "the parts' model-form checks ran other combinations or modes: parts of one checked {what} only"
+                    ),
                 ));
             }
         }
         Ok(Some(found))
     }
+}
+
+/// The merged probability run's model-form check: each combination's counts summed over
+/// the parts, its probability and Clopper-Pearson interval (at the parts' confidence)
+/// recomputed, and the range over the combinations.
+fn merged_probability_check(checks: Vec<serde_json::Value>) -> Result<serde_json::Value, Error> {
+    let mut out = checks[0].clone();
+    let confidence = out["confidence"].as_f64().unwrap_or(0.95);
+    let runs = out["runs"].as_array().cloned().unwrap_or_default();
+    let mut merged = Vec::with_capacity(runs.len());
+    let mut ps = Vec::new();
+    for (k, run) in runs.into_iter().enumerate() {
+        let (mut x, mut n) = (0u64, 0u64);
+        for c in &checks {
+            let r = &c["runs"][k];
+            let (Some(s), Some(d)) = (r["sticking"].as_u64(), r["counted"].as_u64()) else {
+                return Err(Error::usage(
+                    "DIR",
+                    "a part's model_form.json lacks its counts (sticking, counted)",
+                ));
+            };
+            x += s;
+            n += d;
+        }
+        let mut r = run;
+        let (lo, hi) = stiction_model::design_sweep::stats::clopper_pearson(
+            x as usize, n as usize, confidence,
+        )
+        .unwrap_or((0.0, 1.0));
+        r["sticking"] = serde_json::json!(x);
+        r["counted"] = serde_json::json!(n);
+        r["interval"] = serde_json::json!([lo, hi]);
+        if n > 0 {
+            let p = x as f64 / n as f64;
+            ps.push(p);
+            r["stiction_probability"] = serde_json::json!(p);
+        } else if let Some(o) = r.as_object_mut() {
+            o.remove("stiction_probability");
+        }
+        merged.push(r);
+    }
+    let range = if ps.is_empty() {
+        [0.0, 1.0]
+    } else {
+        [
+            ps.iter().copied().fold(f64::INFINITY, f64::min),
+            ps.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        ]
+    };
+    out["summary"] = serde_json::json!(stiction_model::model_form::probability_summary(
+        range,
+        merged.len()
+    ));
+    out["runs"] = serde_json::Value::Array(merged);
+    out["stiction_probability_range"] = serde_json::json!(range);
+    Ok(out)
 }
 
 /// The merged map's model-form check: each part's share at each of its points, by the
@@ -740,10 +814,27 @@ impl MergeCommand {
             })?;
             parts.push((label, run));
         }
+        let checks = self.model_form_checks("probability run")?;
+        if checks.as_ref().is_some_and(|c| c.len() != parts.len()) {
+            return Err(Error::usage(
+                "DIR",
+                "some parts hold a model_form.json and others not: the parts of one run are all checked (--model-form check) or none is",
+            ));
+        }
         preflight(Some(&self.out), PROBABILITY_FILES, None)?;
         let report = ProbabilityReport::merged(merge_probability(parts)?);
         let mut text = report.table();
-        let written = report.files(&self.out)?.commit()?;
+        let mut set = report.files(&self.out)?;
+        if let Some(checks) = checks {
+            let merged = merged_probability_check(checks)?;
+            let _ = write!(
+                text,
+                "\nmodel form: {} (merged from the parts' model_form.json)\n",
+                merged["summary"].as_str().unwrap_or("")
+            );
+            set.add("model_form.json", render::json(&merged));
+        }
+        let written = set.commit()?;
         let list: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
         let _ = write!(text, "\nwrote {}\n", list.join(", "));
         Ok(text)

@@ -17,7 +17,12 @@ use stiction_model::keys::Kind;
 use stiction_model::probability::{self, Probability, ProbabilityRequest, ProbabilityResult};
 
 /// The files `design probability --out` and the merge of its parts write.
-pub const PROBABILITY_FILES: &[&str] = &["samples.csv", "probability.json", "probability.svg"];
+pub const PROBABILITY_FILES: &[&str] = &[
+    "samples.csv",
+    "probability.json",
+    "probability.svg",
+    "model_form.json",
+];
 
 /// The output formats of `design probability`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -213,6 +218,9 @@ impl ProbabilityReport {
             message,
         })?;
         set.add("probability.svg", plot);
+        if let Some(m) = &self.model_form {
+            set.add("model_form.json", render::json(m));
+        }
         Ok(set)
     }
 

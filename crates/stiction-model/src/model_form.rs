@@ -710,6 +710,10 @@ pub struct ProbabilityFormRun {
     pub stiction_probability: Option<f64>,
     /// Its Clopper-Pearson interval.
     pub interval: [f64; 2],
+    /// The counted samples that stick (so that shards merge: `design merge`).
+    pub sticking: usize,
+    /// The counted samples (the denominator).
+    pub counted: usize,
 }
 
 /// The model-form check of a failure probability.
@@ -717,6 +721,8 @@ pub struct ProbabilityFormRun {
 pub struct ProbabilityModelForm {
     /// The mode the other combinations ran in.
     pub accuracy: &'static str,
+    /// The intervals' confidence.
+    pub confidence: f64,
     /// [lowest, highest] P(stiction) over the combinations.
     pub stiction_probability_range: [f64; 2],
     /// One entry per combination, the scene's own first.
@@ -727,21 +733,32 @@ pub struct ProbabilityModelForm {
     pub summary: String,
 }
 
+/// The range of P(stiction) over the combinations, in words ("P(stiction) from 0.400 to 1.00
+/// over 8 combinations"): the summary of a check, and of the merge of its shards.
+pub fn probability_summary(range: [f64; 2], combinations: usize) -> String {
+    format!(
+        "P(stiction) from {} to {} over {combinations} combinations",
+        ratio_words(range[0]),
+        ratio_words(range[1])
+    )
+}
+
 impl ProbabilityModelForm {
-    /// The report of the runs (the scene's own first).
-    pub fn of(accuracy: Accuracy, runs: Vec<ProbabilityFormRun>, excluded: Vec<Excluded>) -> Self {
+    /// The report of the runs (the scene's own first), their intervals at `confidence`.
+    pub fn of(
+        accuracy: Accuracy,
+        confidence: f64,
+        runs: Vec<ProbabilityFormRun>,
+        excluded: Vec<Excluded>,
+    ) -> Self {
         let ps: Vec<f64> = runs.iter().filter_map(|r| r.stiction_probability).collect();
         let lo = ps.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = ps.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let range = if ps.is_empty() { [0.0, 1.0] } else { [lo, hi] };
-        let summary = format!(
-            "P(stiction) from {} to {} over {} combinations",
-            ratio_words(range[0]),
-            ratio_words(range[1]),
-            runs.len()
-        );
+        let summary = probability_summary(range, runs.len());
         Self {
             accuracy: accuracy.as_str(),
+            confidence,
             stiction_probability_range: range,
             runs,
             excluded,

@@ -390,6 +390,8 @@ fn model_form_check(
             laws,
             stiction_probability: s.stiction_probability,
             interval: [s.ci_low, s.ci_high],
+            sticking: s.stiction.count,
+            counted: s.denominator,
         }
     };
     let alternative = ProbabilityRequest {
@@ -402,7 +404,12 @@ fn model_form_check(
     });
     let mut runs = vec![of(crate::switch::Laws::of(&spec.contact), own)];
     runs.extend(ran.iter().map(|(form, r)| of(form.laws(), &r.probability)));
-    Ok(Some(ProbabilityModelForm::of(mode, runs, excluded)))
+    Ok(Some(ProbabilityModelForm::of(
+        mode,
+        own.summary().confidence,
+        runs,
+        excluded,
+    )))
 }
 
 /// The exact single-field answer on the design scene `base`: the threshold of the field
