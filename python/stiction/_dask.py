@@ -43,27 +43,16 @@ def map_on_client(
     base, points = _stiction.design_map_plan(scene, vary, accuracy, shard, require)
     if not points:
         return _stiction.design_map_assemble(scene, vary, [], accuracy, shard, require)
-    if hasattr(client, "scatter") and hasattr(client, "gather"):
-        # dask.distributed: the scene once per worker, one task per point
-        # a key of its own (hash=False): a map run again with the same scene must not meet
-        # the release of the previous run's copy
-        base_ref = client.scatter(base, broadcast=True, hash=False)
-        run = uuid.uuid4().hex[:12]
-        futures = [
-            client.submit(evaluate_point, base_ref, values, key=f"stiction-design-point-{run}-{index}", pure=False)
-            for index, values in points
-        ]
-        answers = client.gather(futures)
-    else:
-        # a concurrent.futures.Executor
-        futures = [client.submit(evaluate_point, base, values) for _, values in points]
-        answers = [f.result() for f in futures]
+    answers = _run_points(client, base, points, "design-point")
     pairs = [(index, answer) for (index, _), answer in zip(points, answers)]
     return _stiction.design_map_assemble(scene, vary, pairs, accuracy, shard, require)
 
 
 def _run_points(client: Any, base: str, points: List[Tuple[int, Any]], what: str) -> List[Any]:
-    """The answers of `points` (index, values) evaluated on `client` against `base`."""
+    """The answers of `points` (index, values) evaluated on `client` against `base`: on
+    dask.distributed the scene once per worker and one task per point (a key of its own,
+    hash=False: a run again with the same scene must not meet the release of the previous
+    run's copy); on a concurrent.futures.Executor one submission per point."""
     if hasattr(client, "scatter") and hasattr(client, "gather"):
         base_ref = client.scatter(base, broadcast=True, hash=False)
         run = uuid.uuid4().hex[:12]
