@@ -17,6 +17,7 @@ mod pool;
 mod probability;
 mod run;
 mod scene;
+mod topography;
 
 use pyo3::prelude::*;
 
@@ -60,5 +61,6 @@ fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(probability::read_probability, m)?)?;
     m.add_class::<contact_law::PyContactLaw>()?;
     m.add_function(wrap_pyfunction!(contact_law::tabulate_law, m)?)?;
+    m.add_function(wrap_pyfunction!(topography::topography, m)?)?;
     Ok(())
 }

@@ -55,6 +55,7 @@ from ._results import (
     SwitchResult,
     Table,
     ThresholdResult,
+    TopographyResult,
 )
 from ._stiction import Scene
 
@@ -124,6 +125,8 @@ __all__ = [
     "Table",
     "SwitchResult",
     "ModelFormReport",
+    "topography",
+    "TopographyResult",
     "ContactState",
     "Cycle",
     "SurfaceResult",
@@ -477,6 +480,33 @@ def calibrate(
         )
         return CalibrationResult(_stiction.calibrate(scene, None, text, "<columns>", fit, overlay))
     return CalibrationResult(_stiction.calibrate(scene, os.fspath(fe), None, "<columns>", fit, overlay))
+
+
+def topography(
+    path: PathLike,
+    file_format: Optional[str] = None,
+    spacing: Optional[float] = None,
+    height_unit: Optional[str] = None,
+    xy_unit: Optional[str] = None,
+    detrend: Optional[str] = None,
+    route: Optional[str] = None,
+) -> TopographyResult:
+    """A measured height map (AFM, profilometer) reduced to the Greenwood-Williamson
+    parameters of a scene, as ``stiction topography FILE``: the report (``to_dict()`` is
+    the command's JSON), the height map as read (``.height_map``, m, a numpy array, rows = y,
+    with ``.dx``, ``.dy``) and the ``[surface]`` scene fragment (``.fragment``). The options
+    are the command's: `file_format` (text, xyz, npy, gsf, gwy, x3p; default from the file),
+    `spacing` (m, for a format without one), `height_unit` and `xy_unit` (m, mm, um, nm, pm,
+    A), `detrend` (mean, plane, poly:N) and `route` (summits, spectral); a bad one raises
+    :class:`InputError` naming it (docs/topography.md)."""
+    for name, value in (("file_format", file_format), ("height_unit", height_unit), ("xy_unit", xy_unit),
+                        ("detrend", detrend), ("route", route)):
+        _word(name, value)
+    if spacing is not None and (isinstance(spacing, bool) or not isinstance(spacing, (int, float))):
+        raise InputError(f"invalid spacing = {spacing!r}: must be a length in m")
+    native = _stiction.topography(os.fspath(path), file_format, None if spacing is None else float(spacing),
+                                  height_unit, xy_unit, detrend, route)
+    return TopographyResult._of_native(native)
 
 
 def __dir__() -> List[str]:

@@ -1145,3 +1145,47 @@ class CalibrationResult(Record):
     scene: Dict[str, Any]
     points: Table  #: every data point with the model's force: delta_max, branch, delta, force, model_force
     overlay: List[Dict[str, Any]]  #: data and model per curve (with overlay=True)
+
+
+class TopographyResult(Record):
+    """A measured height map reduced to the scene's Greenwood-Williamson parameters
+    (``stiction topography FILE``): the report's fields as attributes (``rms_height``,
+    ``moments``, ``spectral``, ``summits``, ``grid``, ``source`` ...), ``to_dict()`` the
+    command's JSON (``heights`` there: the heights' skewness and kurtosis); beside it
+    ``height_map`` (the map as read, m, rows = y, a numpy array),
+    ``dx``, ``dy`` (m) and ``fragment``, the ``[surface]`` scene fragment (TOML text, what
+    ``--out`` writes as surface.toml), with ``fragment_warnings``."""
+
+    @classmethod
+    def _of_native(cls, native: Mapping[str, Any]) -> "TopographyResult":
+        r = cls(native["report"])
+        object.__setattr__(r, "_height_map", native["heights"])
+        for name in ("dx", "dy", "fragment"):
+            object.__setattr__(r, "_" + name, native[name])
+        object.__setattr__(r, "_fragment_warnings", list(native["warnings"]))
+        return r
+
+    @property
+    def height_map(self) -> np.ndarray:
+        """The height map as read, before detrending (m), rows = y."""
+        return self._height_map  # type: ignore[attr-defined, no-any-return]
+
+    @property
+    def dx(self) -> float:
+        """Grid spacing in x (m)."""
+        return self._dx  # type: ignore[attr-defined, no-any-return]
+
+    @property
+    def dy(self) -> float:
+        """Grid spacing in y (m)."""
+        return self._dy  # type: ignore[attr-defined, no-any-return]
+
+    @property
+    def fragment(self) -> str:
+        """The ``[surface]`` scene fragment (TOML), values outside a key's domain commented."""
+        return self._fragment  # type: ignore[attr-defined, no-any-return]
+
+    @property
+    def fragment_warnings(self) -> List[Tuple[str, str]]:
+        """(code, message) of each value the fragment left out."""
+        return self._fragment_warnings  # type: ignore[attr-defined, no-any-return]

@@ -314,3 +314,14 @@ def tabulate_law(
     accuracy: Optional[str] = None,
 ) -> Tuple[Dict[str, Any], ContactLaw]:
     """(summary, law) of a tabulation."""
+
+def topography(
+    path: str,
+    file_format: Optional[str] = None,
+    spacing: Optional[float] = None,
+    height_unit: Optional[str] = None,
+    xy_unit: Optional[str] = None,
+    detrend: Optional[str] = None,
+    route: Optional[str] = None,
+) -> Dict[str, Any]:
+    """The analysis of a height map: report, heights, dx, dy, fragment, warnings."""

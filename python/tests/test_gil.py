@@ -112,7 +112,9 @@ def test_every_kind_of_computation_releases_the_gil(name, tmp_path_factory):
         scene = stiction.Scene.paper("switch")
 
         def work():
-            stiction.design_map(scene, ["surface.sigma_s=2e-9:1e-7:log:6"], accuracy="fast")
+            # 12 points: long enough (> 0.1 s) for the heartbeat to measure, now that a fast
+            # point takes a few milliseconds
+            stiction.design_map(scene, ["surface.sigma_s=2e-9:1e-7:log:12"], accuracy="fast")
 
     gap, took, _, _ = _heartbeat_while(work, ())
     assert took > 0.1, (name, took)

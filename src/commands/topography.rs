@@ -10,10 +10,7 @@ use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use stiction_model::guards::si;
-use stiction_model::topography::{
-    analyze_file, fragment_within_domains, scene_fragment, AnalysisOptions, Detrend,
-    Format as MapFormat, LengthUnit, ReadOptions, Route, TopographyReport,
-};
+use stiction_model::topography::{Format as MapFormat, TopographyReport, TopographyRequest};
 
 /// The files `--out` writes.
 pub const FILES: &[&str] = &["topography.json", "surface.toml", "topography.svg"];
@@ -79,72 +76,40 @@ pub struct TopographyCommand {
     pub out: Option<PathBuf>,
 }
 
-fn unit(option: &str, text: &Option<String>) -> Result<Option<LengthUnit>, Error> {
-    text.as_deref()
-        .map(|t| LengthUnit::parse(t).map_err(|e| Error::usage(option, e.to_string())))
-        .transpose()
-}
-
 impl TopographyCommand {
     /// Reads, analyses, writes.
     pub fn execute(&self) -> Result<String, Error> {
-        let detrend = match self.detrend.trim() {
-            "mean" => Detrend::Mean,
-            "plane" => Detrend::Plane,
-            t => match t
-                .strip_prefix("poly:")
-                .and_then(|n| n.parse::<usize>().ok())
-            {
-                Some(n) if (2..=Detrend::MAX_ORDER).contains(&n) => Detrend::Polynomial(n),
-                _ => {
-                    return Err(Error::usage(
-                        "--detrend",
-                        format!(
-                            "`{t}`: must be mean, plane or poly:N with N in 2..={}",
-                            Detrend::MAX_ORDER
-                        ),
-                    ))
+        let request = TopographyRequest {
+            file_format: self.file_format.map(|f| {
+                match f {
+                    FormatArg::Text => MapFormat::Text,
+                    FormatArg::Xyz => MapFormat::Xyz,
+                    FormatArg::Npy => MapFormat::Npy,
+                    FormatArg::Gsf => MapFormat::Gsf,
+                    FormatArg::Gwy => MapFormat::Gwy,
+                    FormatArg::X3p => MapFormat::X3p,
                 }
-            },
-        };
-        if let Some(s) = self.spacing {
-            if !(s.is_finite() && s > 0.0) {
-                return Err(Error::usage(
-                    "--spacing",
-                    format!("{s:e}: must be a finite length > 0 (m)"),
-                ));
-            }
-        }
-        let read = ReadOptions {
-            format: self.file_format.map(|f| match f {
-                FormatArg::Text => MapFormat::Text,
-                FormatArg::Xyz => MapFormat::Xyz,
-                FormatArg::Npy => MapFormat::Npy,
-                FormatArg::Gsf => MapFormat::Gsf,
-                FormatArg::Gwy => MapFormat::Gwy,
-                FormatArg::X3p => MapFormat::X3p,
+                .name()
+                .to_string()
             }),
             spacing: self.spacing,
-            height_unit: unit("--height-unit", &self.height_unit)?,
-            xy_unit: unit("--xy-unit", &self.xy_unit)?,
-            ..ReadOptions::default()
+            height_unit: self.height_unit.clone(),
+            xy_unit: self.xy_unit.clone(),
+            detrend: Some(self.detrend.clone()),
+            route: Some(
+                match self.route {
+                    RouteArg::Summits => "summits",
+                    RouteArg::Spectral => "spectral",
+                }
+                .to_string(),
+            ),
         };
         preflight(self.out.as_deref(), FILES, None)?;
-        let options = AnalysisOptions {
-            detrend,
-            ..AnalysisOptions::default()
-        };
-        let report = analyze_file(&self.file, &read, &options)?;
-        let route = match self.route {
-            RouteArg::Summits if report.summits.is_some() => Route::Summits,
-            _ => Route::Spectral,
-        };
-        let fragment = scene_fragment(&report, route).map_err(stiction_model::ModelError::from)?;
-        let (fragment, warnings) = fragment_within_domains(&fragment);
+        let run = stiction_model::topography::run(&self.file, &request).map_err(option_error)?;
         let result = TopographyResult {
-            report,
-            fragment,
-            warnings,
+            report: run.report,
+            fragment: run.fragment,
+            warnings: run.warnings,
         };
         let mut outputs = Outputs::default();
         if let Some(dir) = &self.out {
@@ -159,6 +124,16 @@ impl TopographyCommand {
             outputs.folder = Some(set);
         }
         finish(&result, self.format, false, false, outputs)
+    }
+}
+
+/// A library option error as the command line's option (`detrend` -> `--detrend`).
+fn option_error(e: stiction_model::ModelError) -> Error {
+    match e {
+        stiction_model::ModelError::Option { name, message } => {
+            Error::usage(&format!("--{}", name.replace('_', "-")), message)
+        }
+        e => e.into(),
     }
 }
 

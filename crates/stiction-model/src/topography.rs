@@ -100,3 +100,138 @@ pub fn analyze_map(
 ) -> Result<TopographyReport, ModelError> {
     Ok(analyze(map, options)?)
 }
+
+/// A topography question with its options in words, as every front end takes them (the
+/// command line's `--file-format`, `--spacing`, `--height-unit`, `--xy-unit`, `--detrend`,
+/// `--route`); None takes the default (the format from the file, plane, summits).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TopographyRequest {
+    /// text | xyz | npy | gsf | gwy | x3p.
+    pub file_format: Option<String>,
+    /// Grid spacing (m) for a format that lacks one.
+    pub spacing: Option<f64>,
+    /// Unit of the heights for a file that does not state it (m, mm, um, nm, pm, A).
+    pub height_unit: Option<String>,
+    /// Unit of x and y of an x/y/z file that does not state it.
+    pub xy_unit: Option<String>,
+    /// mean | plane | poly:N (N = 2..6).
+    pub detrend: Option<String>,
+    /// summits | spectral: the route of the scene fragment.
+    pub route: Option<String>,
+}
+
+/// What a topography question gives: the report (the command's JSON), the `[surface]`
+/// scene fragment (values outside a key's domain commented out, see
+/// [`fragment_within_domains`]), its warnings, and the height map as read (SI).
+#[derive(Debug, Clone)]
+pub struct TopographyRun {
+    /// The analysis.
+    pub report: TopographyReport,
+    /// The scene fragment (TOML text).
+    pub fragment: String,
+    /// The fragment's warnings.
+    pub warnings: Vec<ModelWarning>,
+    /// The height map as read, before detrending (m).
+    pub map: HeightMap,
+}
+
+/// The detrending a word names: mean, plane or poly:N with N in 2..=[`Detrend::MAX_ORDER`]
+/// (errors name the argument `detrend`).
+pub fn detrend_of(word: &str) -> Result<Detrend, ModelError> {
+    match word.trim() {
+        "mean" => Ok(Detrend::Mean),
+        "plane" => Ok(Detrend::Plane),
+        t => match t
+            .strip_prefix("poly:")
+            .and_then(|n| n.parse::<usize>().ok())
+        {
+            Some(n) if (2..=Detrend::MAX_ORDER).contains(&n) => Ok(Detrend::Polynomial(n)),
+            _ => Err(ModelError::Option {
+                name: "detrend".into(),
+                message: format!(
+                    "`{t}`: must be mean, plane or poly:N with N in 2..={}",
+                    Detrend::MAX_ORDER
+                ),
+            }),
+        },
+    }
+}
+
+/// Reads and analyses the height map at `path` as `request` asks, and writes its scene
+/// fragment: what `stiction topography FILE` computes. Option errors name the option
+/// (`file_format`, `spacing`, `height_unit`, `xy_unit`, `detrend`, `route`).
+pub fn run(path: &Path, request: &TopographyRequest) -> Result<TopographyRun, ModelError> {
+    let bad = |name: &str, message: String| ModelError::Option {
+        name: name.into(),
+        message,
+    };
+    let format = match request.file_format.as_deref() {
+        None => None,
+        Some(w) => Some(
+            Format::ALL
+                .into_iter()
+                .find(|f| f.name() == w)
+                .ok_or_else(|| {
+                    let names: Vec<&str> = Format::ALL.iter().map(|f| f.name()).collect();
+                    bad(
+                        "file_format",
+                        format!("`{w}`: must be one of {}", names.join(", ")),
+                    )
+                })?,
+        ),
+    };
+    if let Some(s) = request.spacing {
+        if !(s.is_finite() && s > 0.0) {
+            return Err(bad(
+                "spacing",
+                format!("{s:e}: must be a finite length > 0 (m)"),
+            ));
+        }
+    }
+    let unit = |name: &str, t: &Option<String>| {
+        t.as_deref()
+            .map(|t| LengthUnit::parse(t).map_err(|e| bad(name, e.to_string())))
+            .transpose()
+    };
+    let read = ReadOptions {
+        format,
+        spacing: request.spacing,
+        height_unit: unit("height_unit", &request.height_unit)?,
+        xy_unit: unit("xy_unit", &request.xy_unit)?,
+        ..ReadOptions::default()
+    };
+    let detrend = match request.detrend.as_deref() {
+        None => Detrend::Plane,
+        Some(w) => detrend_of(w)?,
+    };
+    let route = match request.route.as_deref() {
+        None | Some("summits") => Route::Summits,
+        Some("spectral") => Route::Spectral,
+        Some(w) => return Err(bad("route", format!("`{w}`: must be summits or spectral"))),
+    };
+    let options = AnalysisOptions {
+        detrend,
+        ..AnalysisOptions::default()
+    };
+    let m = read_path(path, &read)?;
+    let report = analyze_measurement(&m, &options).map_err(|e| {
+        ModelError::from(topography::TopographyError::InFile {
+            path: path.to_path_buf(),
+            source: Box::new(e),
+        })
+    })?;
+    // a map without summits on its grid gives the spectral route's numbers
+    let route = if route == Route::Summits && report.summits.is_none() {
+        Route::Spectral
+    } else {
+        route
+    };
+    let fragment = scene_fragment(&report, route)?;
+    let (fragment, warnings) = fragment_within_domains(&fragment);
+    Ok(TopographyRun {
+        report,
+        fragment,
+        warnings,
+        map: m.map,
+    })
+}
