@@ -11,9 +11,9 @@ use stiction_model::topography::{run, TopographyRequest};
 /// `stiction.topography(path, ...)`: the report (the command's JSON), the height map as
 /// read (m, rows = y, `dx`, `dy`), the `[surface]` scene fragment and its warnings; the
 /// options as the command line's (`file_format`, `spacing`, `height_unit`, `xy_unit`,
-/// `detrend`, `route`), errors naming them.
+/// `detrend`, `route`, `undefined`, `channel`), errors naming them.
 #[pyfunction]
-#[pyo3(signature = (path, file_format = None, spacing = None, height_unit = None, xy_unit = None, detrend = None, route = None))]
+#[pyo3(signature = (path, file_format = None, spacing = None, height_unit = None, xy_unit = None, detrend = None, route = None, undefined = None, channel = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn topography<'py>(
     py: Python<'py>,
@@ -24,6 +24,8 @@ pub fn topography<'py>(
     xy_unit: Option<String>,
     detrend: Option<String>,
     route: Option<String>,
+    undefined: Option<String>,
+    channel: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let request = TopographyRequest {
         file_format,
@@ -32,6 +34,8 @@ pub fn topography<'py>(
         xy_unit,
         detrend,
         route,
+        undefined,
+        channel,
     };
     let r = crate::pool::detach(py, move || run(&path, &request)).or_raise()?;
     let d = PyDict::new(py);

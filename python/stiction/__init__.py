@@ -490,22 +490,35 @@ def topography(
     xy_unit: Optional[str] = None,
     detrend: Optional[str] = None,
     route: Optional[str] = None,
+    undefined: Optional[str] = None,
+    channel: Optional[Union[str, int]] = None,
 ) -> TopographyResult:
     """A measured height map (AFM, profilometer) reduced to the Greenwood-Williamson
     parameters of a scene, as ``stiction topography FILE``: the report (``to_dict()`` is
     the command's JSON), the height map as read (``.height_map``, m, a numpy array, rows = y,
     with ``.dx``, ``.dy``) and the ``[surface]`` scene fragment (``.fragment``). The options
-    are the command's: `file_format` (text, xyz, npy, gsf, gwy, x3p; default from the file),
+    are the command's: `file_format` (text, xyz, npy, gsf, gwy, x3p, nanoscope, opd,
+    metropro, sur, plu, vk4, sdf; default from the file's first bytes, else its extension),
     `spacing` (m, for a format without one), `height_unit` and `xy_unit` (m, mm, um, nm, pm,
-    A), `detrend` (mean, plane, poly:N) and `route` (summits, spectral); a bad one raises
-    :class:`InputError` naming it (docs/topography.md)."""
+    A), `detrend` (mean, plane, poly:N), `route` (summits, spectral), `undefined` (refuse,
+    the default, or fill: the file's undefined points filled by harmonic interpolation;
+    ``to_dict()["source"]["undefined_points"]`` counts them) and `channel` (a name or a
+    0-based index among ``to_dict()["source"]["channels"]``; default the first height
+    channel); a bad one raises :class:`InputError` naming it (docs/topography.md)."""
     for name, value in (("file_format", file_format), ("height_unit", height_unit), ("xy_unit", xy_unit),
-                        ("detrend", detrend), ("route", route)):
+                        ("detrend", detrend), ("route", route), ("undefined", undefined)):
         _word(name, value)
     if spacing is not None and (isinstance(spacing, bool) or not isinstance(spacing, (int, float))):
         raise InputError(f"invalid spacing = {spacing!r}: must be a length in m")
+    if channel is not None:
+        if isinstance(channel, bool) or not isinstance(channel, (str, int)):
+            raise InputError(f"invalid channel = {channel!r}: must be a channel's name (a str) or its 0-based index")
+        if isinstance(channel, int):
+            if channel < 0:
+                raise InputError(f"invalid channel = {channel!r}: an index is 0 or more")
+            channel = str(channel)
     native = _stiction.topography(os.fspath(path), file_format, None if spacing is None else float(spacing),
-                                  height_unit, xy_unit, detrend, route)
+                                  height_unit, xy_unit, detrend, route, undefined, channel)
     return TopographyResult._of_native(native)
 
 

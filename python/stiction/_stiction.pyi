@@ -323,5 +323,7 @@ def topography(
     xy_unit: Optional[str] = None,
     detrend: Optional[str] = None,
     route: Optional[str] = None,
+    undefined: Optional[str] = None,
+    channel: Optional[str] = None,
 ) -> Dict[str, Any]:
     """The analysis of a height map: report, heights, dx, dy, fragment, warnings."""

@@ -30,6 +30,29 @@ pub enum FormatArg {
     Gwy,
     /// ISO 25178-72 .x3p.
     X3p,
+    /// Bruker/Veeco Nanoscope (.spm, .di, .001).
+    Nanoscope,
+    /// Wyko/Bruker Vision .opd.
+    Opd,
+    /// Zygo MetroPro .dat.
+    Metropro,
+    /// Digital Surf .sur (MountainsMap).
+    Sur,
+    /// Sensofar .plu and .plux.
+    Plu,
+    /// Keyence .vk4.
+    Vk4,
+    /// ISO 25178-71 .sdf.
+    Sdf,
+}
+
+/// What to do with the file's undefined points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum UndefinedArg {
+    /// Refuse the file, naming how many points are undefined.
+    Refuse,
+    /// Fill them by harmonic (Laplace) interpolation from their defined neighbours.
+    Fill,
 }
 
 /// The route a scene fragment takes its numbers from.
@@ -45,13 +68,24 @@ pub enum RouteArg {
 /// height map, two ways, with a `[surface]` scene fragment.
 #[derive(Debug, Clone, clap::Args)]
 pub struct TopographyCommand {
-    /// The height map: a text matrix, x/y/z columns, .npy, Gwyddion .gwy or .gsf, or
-    /// ISO 25178-72 .x3p (the format from the extension and the first bytes).
+    /// The height map: a text matrix, x/y/z columns, .npy, Gwyddion .gwy or .gsf,
+    /// ISO 25178-72 .x3p, or an instrument's file (Nanoscope, Wyko .opd, Zygo .dat,
+    /// Digital Surf .sur, Sensofar .plu/.plux, Keyence .vk4, ISO 25178-71 .sdf); the format
+    /// from the first bytes, else the extension.
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
     /// Read the file as this format.
     #[arg(long = "file-format", value_enum)]
     pub file_format: Option<FormatArg>,
+    /// The file's undefined points (instrument markers, NaN): refused (default), or filled
+    /// by harmonic interpolation from their defined neighbours (counted in
+    /// source.undefined_points either way).
+    #[arg(long, value_enum, value_name = "refuse|fill")]
+    pub undefined: Option<UndefinedArg>,
+    /// The channel to read, by name or 0-based index (the report's source.channels lists a
+    /// file's channels); default the first height channel.
+    #[arg(long, value_name = "NAME|INDEX")]
+    pub channel: Option<String>,
     /// Grid spacing (m) for a format that lacks one (text, npy); overrides the file's.
     #[arg(long, allow_hyphen_values = true)]
     pub spacing: Option<f64>,
@@ -88,6 +122,13 @@ impl TopographyCommand {
                     FormatArg::Gsf => MapFormat::Gsf,
                     FormatArg::Gwy => MapFormat::Gwy,
                     FormatArg::X3p => MapFormat::X3p,
+                    FormatArg::Nanoscope => MapFormat::Nanoscope,
+                    FormatArg::Opd => MapFormat::Opd,
+                    FormatArg::Metropro => MapFormat::Metropro,
+                    FormatArg::Sur => MapFormat::Sur,
+                    FormatArg::Plu => MapFormat::Plu,
+                    FormatArg::Vk4 => MapFormat::Vk4,
+                    FormatArg::Sdf => MapFormat::Sdf,
                 }
                 .name()
                 .to_string()
@@ -103,6 +144,14 @@ impl TopographyCommand {
                 }
                 .to_string(),
             ),
+            undefined: self.undefined.map(|u| {
+                match u {
+                    UndefinedArg::Refuse => "refuse",
+                    UndefinedArg::Fill => "fill",
+                }
+                .to_string()
+            }),
+            channel: self.channel.clone(),
         };
         preflight(self.out.as_deref(), FILES, None)?;
         let run = stiction_model::topography::run(&self.file, &request).map_err(option_error)?;
@@ -171,6 +220,31 @@ impl Render for TopographyResult {
             si(d.mean_height, "m", 4),
             d.tilt_degrees
         );
+        if let Some(src) = &r.source {
+            let mut line = format!("read from {} as {}", src.path, src.format);
+            if src.channels.len() > 1 {
+                let _ = write!(
+                    line,
+                    ", channel {:?} of {} ({})",
+                    src.title.as_deref().unwrap_or(""),
+                    src.channels.len(),
+                    src.channels
+                        .iter()
+                        .enumerate()
+                        .map(|(k, c)| format!("{k} {c:?}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                );
+            }
+            if src.undefined_points > 0 {
+                let _ = write!(
+                    line,
+                    "; {} undefined points filled (harmonic interpolation)",
+                    src.undefined_points
+                );
+            }
+            let _ = writeln!(s, "{line}");
+        }
         let _ = writeln!(
             s,
             "rms height {} (not sigma_s: the model needs the summits'), m2 = {:.4e}, m4 = {:.4e} 1/m^2, alpha = {:.3}",

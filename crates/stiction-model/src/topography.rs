@@ -103,10 +103,12 @@ pub fn analyze_map(
 
 /// A topography question with its options in words, as every front end takes them (the
 /// command line's `--file-format`, `--spacing`, `--height-unit`, `--xy-unit`, `--detrend`,
-/// `--route`); None takes the default (the format from the file, plane, summits).
+/// `--route`, `--undefined`, `--channel`); None takes the default (the format from the
+/// file, plane, summits, undefined points refused, the first height channel).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct TopographyRequest {
-    /// text | xyz | npy | gsf | gwy | x3p.
+    /// One of [`Format::names`]: text, xyz, npy, gsf, gwy, x3p, nanoscope, opd, metropro,
+    /// sur, plu, vk4, sdf.
     pub file_format: Option<String>,
     /// Grid spacing (m) for a format that lacks one.
     pub spacing: Option<f64>,
@@ -118,6 +120,13 @@ pub struct TopographyRequest {
     pub detrend: Option<String>,
     /// summits | spectral: the route of the scene fragment.
     pub route: Option<String>,
+    /// refuse | fill: the file's undefined points (instrument markers, NaN) refused (the
+    /// default) or filled by harmonic interpolation (the report's `source.undefined_points`
+    /// counts them either way).
+    pub undefined: Option<String>,
+    /// The channel to read, by name or 0-based index (the report's `source.channels` lists
+    /// them); default the first height channel.
+    pub channel: Option<String>,
 }
 
 /// What a topography question gives: the report (the command's JSON), the `[surface]`
@@ -159,7 +168,8 @@ pub fn detrend_of(word: &str) -> Result<Detrend, ModelError> {
 
 /// Reads and analyses the height map at `path` as `request` asks, and writes its scene
 /// fragment: what `stiction topography FILE` computes. Option errors name the option
-/// (`file_format`, `spacing`, `height_unit`, `xy_unit`, `detrend`, `route`).
+/// (`file_format`, `spacing`, `height_unit`, `xy_unit`, `detrend`, `route`, `undefined`,
+/// `channel`).
 pub fn run(path: &Path, request: &TopographyRequest) -> Result<TopographyRun, ModelError> {
     let bad = |name: &str, message: String| ModelError::Option {
         name: name.into(),
@@ -193,11 +203,28 @@ pub fn run(path: &Path, request: &TopographyRequest) -> Result<TopographyRun, Mo
             .map(|t| LengthUnit::parse(t).map_err(|e| bad(name, e.to_string())))
             .transpose()
     };
+    let undefined = match request.undefined.as_deref() {
+        None => Undefined::Refuse,
+        Some(w) => w
+            .parse::<Undefined>()
+            .map_err(|_| bad("undefined", format!("`{w}`: must be refuse or fill")))?,
+    };
+    let channel = match request.channel.as_deref() {
+        Some(c) if c.trim().is_empty() => {
+            return Err(bad(
+                "channel",
+                "an empty name: give a channel's name or its 0-based index".to_string(),
+            ))
+        }
+        c => c.map(str::to_string),
+    };
     let read = ReadOptions {
         format,
         spacing: request.spacing,
         height_unit: unit("height_unit", &request.height_unit)?,
         xy_unit: unit("xy_unit", &request.xy_unit)?,
+        channel,
+        undefined,
         ..ReadOptions::default()
     };
     let detrend = match request.detrend.as_deref() {
@@ -234,4 +261,92 @@ pub fn run(path: &Path, request: &TopographyRequest) -> Result<TopographyRun, Mo
         warnings,
         map: m.map,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn file_with_a_hole() -> std::path::PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("stiction-model-topography-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("hole.txt");
+        let rows: Vec<String> = (0..12)
+            .map(|j| {
+                (0..12)
+                    .map(|i| {
+                        if (i, j) == (5, 6) {
+                            "NaN".to_string()
+                        } else {
+                            (((i * 7 + j * 13) % 5) as f64 * 0.7).to_string()
+                        }
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            })
+            .collect();
+        std::fs::write(
+            &p,
+            format!(
+                "# spacing = 10 nm\n# height_unit = nm\n{}\n",
+                rows.join("\n")
+            ),
+        )
+        .unwrap();
+        p
+    }
+
+    /// `undefined` and `channel` reach the reader; bad words are refused naming the option.
+    #[test]
+    fn undefined_points_and_channels_are_options_named_in_their_errors() {
+        let p = file_with_a_hole();
+        let option = |r: TopographyRequest| match run(&p, &r) {
+            Err(ModelError::Option { name, message }) => (name, message),
+            other => panic!("{other:?}"),
+        };
+        let (name, message) = option(TopographyRequest {
+            undefined: Some("maybe".into()),
+            ..TopographyRequest::default()
+        });
+        assert_eq!(name, "undefined");
+        assert!(
+            message.contains("`maybe`") && message.contains("refuse or fill"),
+            "{message}"
+        );
+        let (name, _) = option(TopographyRequest {
+            channel: Some(" ".into()),
+            ..TopographyRequest::default()
+        });
+        assert_eq!(name, "channel");
+        let e = run(&p, &TopographyRequest::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("1 of 144 heights are undefined") && e.contains("--undefined fill"),
+            "{e}"
+        );
+        let filled = run(
+            &p,
+            &TopographyRequest {
+                undefined: Some("fill".into()),
+                channel: Some("0".into()),
+                ..TopographyRequest::default()
+            },
+        )
+        .unwrap();
+        let source = filled.report.source.as_ref().unwrap();
+        assert_eq!((source.undefined_points, source.channels.len()), (1, 1));
+        let e = run(
+            &p,
+            &TopographyRequest {
+                undefined: Some("fill".into()),
+                channel: Some("phase".into()),
+                ..TopographyRequest::default()
+            },
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("channel") && e.contains("\"phase\""), "{e}");
+    }
 }

@@ -68,7 +68,8 @@ pub enum TopographyError {
     },
     /// The format could not be told from the extension or the first bytes.
     #[error(
-        "{path}: unknown format ({message}); name it explicitly (text, xyz, npy, gsf, gwy, x3p)"
+        "{path}: unknown format ({message}); name it explicitly (one of {formats}), or export it as .x3p",
+        formats = crate::io::Format::names()
     )]
     UnknownFormat {
         /// The file.

@@ -2,7 +2,10 @@
 //!
 //! Every GW scene needs sigma_s (standard deviation of the **summit** heights), the asperity
 //! density N and the asperity radius R. This crate reads a height map (text matrix, x/y/z
-//! columns, NumPy `.npy`, Gwyddion `.gwy` and `.gsf`, ISO 25178-72 `.x3p`), removes its mean
+//! columns, NumPy `.npy`, Gwyddion `.gwy` and `.gsf`, ISO 25178-72 `.x3p`, and the
+//! instruments' own files: Bruker/Veeco Nanoscope, Wyko `.opd`, Zygo MetroPro `.dat`,
+//! Digital Surf `.sur`, Sensofar `.plu`/`.plux`, Keyence `.vk4`, ISO 25178-71 `.sdf`;
+//! [`io`]), refuses or fills its undefined points ([`fill_harmonic`]), removes its mean
 //! plane (or a polynomial form), and computes the three numbers two ways, side by side:
 //!
 //! * **spectral**: from the profile moments m0, m2, m4 of the equivalent isotropic surface
@@ -42,6 +45,7 @@ struct ReadmeDoctests;
 
 mod detrend;
 mod error;
+mod fill;
 mod gw;
 pub mod io;
 mod map;
@@ -54,8 +58,9 @@ mod synth;
 
 pub use detrend::{detrend, Detrend, DetrendSummary};
 pub use error::{Result, TopographyError};
+pub use fill::{fill_harmonic, FillSummary};
 pub use gw::{mccool, GwParameters, MCCOOL_SIGMA_CONSTANT};
-pub use io::{read_path, Format, Measurement, ReadOptions, Source};
+pub use io::{read_path, Format, Measurement, ReadOptions, Source, Undefined};
 pub use map::{HeightMap, LengthUnit};
 pub use moments::{
     finite_difference_moments, radial_psd, spectral_moments, MomentMethod, Moments, PsdPoint,

@@ -10,12 +10,13 @@
 //! The top object is a `GwyContainer` whose component `/N/data` holds the N-th channel as a
 //! `GwyDataField` with `xres`, `yres` (i32), `xreal`, `yreal` (f64, physical size),
 //! optional `xoff`, `yoff`, `si_unit_xy`, `si_unit_z` (`GwySIUnit` objects whose `unitstr`
-//! is the unit) and `data` (xres * yres f64, row by row). The channel with the lowest N
-//! is read; its title is `/N/data/title`.
+//! is the unit) and `data` (xres * yres f64, row by row). Every channel is listed (its
+//! title is `/N/data/title`); the one read is the lowest N whose z unit is a length, or
+//! the one `ReadOptions::channel` names.
 
 use std::path::Path;
 
-use super::{FileUnit, Measurement, ReadOptions, Settle};
+use super::{Channel, FileUnit, Measurement, ReadOptions, Settle};
 use crate::error::{Result, TopographyError};
 use crate::io::{read_bounded, Format};
 use crate::map::HeightMap;
@@ -255,24 +256,33 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         })
         .collect();
     channels.sort_by_key(|c| c.0);
-    let Some(&(id, key, field)) = channels.first() else {
+    if channels.is_empty() {
         return Err(st.err(
             "GwyContainer",
             "no channel: no component /N/data holding a GwyDataField",
         ));
-    };
-    let title = match top.get(&format!("{key}/title")) {
+    }
+    let title_of = |key: &str| match top.get(&format!("{key}/title")) {
         Some(Value::Str(s)) => Some(s.clone()),
         _ => None,
     };
-    let mut notes = Vec::new();
-    if channels.len() > 1 {
-        notes.push(format!(
-            "the file has {} channels; channel {id} ({}) was read",
-            channels.len(),
-            title.as_deref().unwrap_or("untitled")
-        ));
-    }
+    let list: Vec<Channel> = channels
+        .iter()
+        .map(|&(_, key, field)| {
+            Channel::new(
+                title_of(key).unwrap_or_else(|| key.to_string()),
+                matches!(unit_of(field, "si_unit_z"), FileUnit::Length(_)),
+            )
+        })
+        .collect();
+    let chosen = {
+        let mut probe = Settle::new(path, Format::Gwy, opts);
+        let k = probe.choose_channel(&list)?;
+        (k, probe.notes, probe.channels)
+    };
+    let (k, notes, names) = chosen;
+    let (_, key, field) = channels[k];
+    let title = title_of(key);
     let loc = |c: &str| format!("component {c} of {key} (GwyDataField at byte {})", field.at);
     let int = |c: &str| -> Result<u64> {
         match field.get(c) {
@@ -318,8 +328,9 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         .map(|b| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]))
         .collect();
     let (xy_loc, z_loc) = (loc("si_unit_xy"), loc("si_unit_z"));
-    st.title = title;
+    st.title = Some(title.unwrap_or_else(|| key.to_string()));
     st.notes = notes;
+    st.channels = names;
     let file_spacing = match xy {
         FileUnit::Length(u) => Some((
             xreal * u.to_metres / nx as f64,

@@ -60,6 +60,9 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     let have = reader.len() as u64;
     let file = NpyFile::with_header(header, reader);
     let shape = file.shape().to_vec();
+    if shape.len() == 1 {
+        return Err(st.profile("header field shape", shape[0]));
+    }
     if shape.len() != 2 {
         return Err(st.err(
             "header field shape",

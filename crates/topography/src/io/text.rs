@@ -8,6 +8,24 @@
 //! * `# format = xyz` makes a text file an xyz file;
 //! * Gwyddion's ASCII export is understood: `# Width: 5.000 µm`, `# Height: 5.000 µm` (the
 //!   scan size in x and y), `# Value units: m`.
+//!
+//! A header of plain `key=value` lines before the matrix (no `#`; a line whose first field is
+//! not a number) is read too, as a common instrument export writes it:
+//!
+//! ```text
+//! h=650 w=512
+//! pixel size=0.1 um
+//! data unit=rad
+//! height conversion factor (-> m)=6.3e-8
+//! ```
+//!
+//! `h` and `w` are the numbers of rows and columns (checked against the matrix), `pixel size`
+//! the spacing in both directions, `height conversion factor (-> U)` the length unit `U`
+//! (metres if absent) per stored value, which makes the `data unit` (here a phase in rad)
+//! irrelevant; without a factor a `data unit` that is a length is the height unit. Any
+//! other `key=value` line is skipped.
+//!
+//! Undefined points: `NaN`, `nan`, `inf`, `BAD` (any case) in the matrix or in the z column.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -26,6 +44,32 @@ struct Header {
     z_unit: Option<(FileUnit, usize)>,
     xy_unit: Option<LengthUnit>,
     xyz: bool,
+    /// `h=` and `w=` of a plain header (rows, columns), with their line.
+    rows: Option<(u64, usize)>,
+    cols: Option<(u64, usize)>,
+    /// `height conversion factor (-> U)=f`: metres per stored value, with its line.
+    conversion: Option<(f64, usize)>,
+    /// `data unit=...`, with its line.
+    data_unit: Option<(FileUnit, usize)>,
+}
+
+/// Whether a line (not a `#` comment) is a plain `key=value` header line: its first field
+/// is not a number (nor an undefined-point word) and it holds `=` or `:`.
+fn is_plain_header(t: &str) -> bool {
+    if t.starts_with('#') || !(t.contains('=') || t.contains(':')) {
+        return false;
+    }
+    let first = split_fields(t).into_iter().next().unwrap_or("");
+    parse_number(first).is_none()
+}
+
+/// A number, or NaN for an undefined-point word (`NaN`, `inf`, `BAD`, any case).
+fn parse_number(f: &str) -> Option<f64> {
+    match f.parse::<f64>() {
+        Ok(v) => Some(if v.is_finite() { v } else { f64::NAN }),
+        Err(_) if f.eq_ignore_ascii_case("bad") => Some(f64::NAN),
+        Err(_) => None,
+    }
 }
 
 /// Reads a text matrix (see the module docs for the header convention).
@@ -67,7 +111,11 @@ pub(crate) fn decode_text(
                 + 1;
             return Err(st.err(
                 format!("line {line}"),
-                "not UTF-8 text (a binary file? name its format, or check the extension)",
+                format!(
+                    "not UTF-8 text: a binary file whose format was not recognised (the formats read: {}); \
+                     name its format, check the extension, or export it as .x3p",
+                    Format::names()
+                ),
             ));
         }
     };
@@ -78,6 +126,11 @@ pub(crate) fn decode_text(
     };
     // Pass 1: header lines.
     for (k, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if is_plain_header(t) {
+            plain_header(&st, &mut h, t, k + 1)?;
+            continue;
+        }
         let Some(c) = line.trim_start().strip_prefix('#') else {
             continue;
         };
@@ -137,7 +190,7 @@ pub(crate) fn decode_text(
     let mut nrows = 0usize;
     for (k, line) in text.lines().enumerate() {
         let t = line.trim();
-        if t.is_empty() || t.starts_with('#') {
+        if t.is_empty() || t.starts_with('#') || is_plain_header(t) {
             continue;
         }
         let fields = split_fields(t);
@@ -165,6 +218,25 @@ pub(crate) fn decode_text(
     if nrows == 0 {
         return Err(st.err("data", "no data lines (only comments or blank lines)"));
     }
+    for (name, declared, found) in [("h", h.rows, nrows), ("w", h.cols, ncols)] {
+        if let Some((v, line)) = declared {
+            if v != found as u64 {
+                return Err(st.err(
+                    format!("line {line}"),
+                    format!(
+                        "{name}={v}, but the matrix has {found} {}",
+                        if name == "h" { "rows" } else { "columns" }
+                    ),
+                ));
+            }
+        }
+    }
+    if let Some((f, line)) = h.conversion {
+        let u = LengthUnit::factor(f).map_err(|e| st.err(format!("line {line}"), e.to_string()))?;
+        h.z_unit = Some((FileUnit::Length(u), line));
+    } else if h.z_unit.is_none() {
+        h.z_unit = h.data_unit.take();
+    }
     let file_spacing = match (
         h.dx.or(h.width.map(|w| w / ncols as f64)),
         h.dy.or(h.height.map(|w| w / nrows as f64)),
@@ -180,14 +252,74 @@ pub(crate) fn decode_text(
     st.finish(ncols, nrows, spacing, unit, z)
 }
 
+/// One plain `key=value` header line (see the module docs): `h=650 w=512` (several pairs on
+/// a line), `pixel size=0.1 um`, `data unit=rad`, `height conversion factor (-> m)=6e-8`.
+fn plain_header(st: &Settle, h: &mut Header, t: &str, line: usize) -> Result<()> {
+    let at = format!("line {line}");
+    let tokens: Vec<&str> = t.split_whitespace().collect();
+    let pairs: Vec<(&str, &str)> = if tokens.len() > 1 && tokens.iter().all(|w| w.contains('=')) {
+        tokens.iter().filter_map(|w| w.split_once('=')).collect()
+    } else {
+        match t.split_once('=').or_else(|| t.split_once(':')) {
+            Some(p) => vec![p],
+            None => return Ok(()),
+        }
+    };
+    for (key, value) in pairs {
+        let key = key.trim().to_ascii_lowercase();
+        let value = value.trim();
+        let count = |v: &str| {
+            v.parse::<u64>()
+                .ok()
+                .filter(|&n| n > 0)
+                .ok_or_else(|| st.err(&at, format!("{key}={v:?} is not a positive integer")))
+        };
+        if key == "h" {
+            h.rows = Some((count(value)?, line));
+        } else if key == "w" {
+            h.cols = Some((count(value)?, line));
+        } else if key == "pixel size" {
+            let v = parse_length(value)
+                .map_err(|e| st.err(&at, format!("pixel size = {value:?}: {e}")))?;
+            h.dx = Some(v);
+            h.dy = Some(v);
+        } else if key == "data unit" {
+            h.data_unit = Some((FileUnit::from_file(value), line));
+        } else if let Some(rest) = key.strip_prefix("height conversion factor") {
+            // "(-> m)": the unit the factor converts to, metres if absent
+            let unit = rest
+                .trim()
+                .strip_prefix('(')
+                .and_then(|r| r.strip_suffix(')'))
+                .map(|r| r.trim().trim_start_matches("->").trim())
+                .unwrap_or("");
+            let to = if unit.is_empty() {
+                LengthUnit::METRE
+            } else {
+                LengthUnit::parse(unit)
+                    .map_err(|e| st.err(&at, format!("height conversion factor: {e}")))?
+            };
+            let f = value
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite() && *v > 0.0)
+                .ok_or_else(|| {
+                    st.err(
+                        &at,
+                        format!("height conversion factor = {value:?} is not a positive number"),
+                    )
+                })?;
+            h.conversion = Some((f * to.to_metres, line));
+        }
+    }
+    Ok(())
+}
+
+/// A height: a number, or NaN for an undefined point (`NaN`, `inf`, `BAD`).
 fn parse_value(st: &Settle, f: &str, line: usize, col: usize) -> Result<f64> {
-    match f.parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(v),
-        Ok(v) => Err(st.err(
-            format!("line {line}, column {col}"),
-            format!("{v} is not a finite height (invalid or missing point); fill or crop it first"),
-        )),
-        Err(_) => Err(st.err(
+    match parse_number(f) {
+        Some(v) => Ok(v),
+        None => Err(st.err(
             format!("line {line}, column {col}"),
             if f.is_empty() {
                 "empty field".to_string()
@@ -216,7 +348,7 @@ fn decode_xyz_body(mut st: Settle, text: &str, h: Header) -> Result<Measurement>
     let (mut xs, mut ys, mut zs, mut lines) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for (k, line) in text.lines().enumerate() {
         let t = line.trim();
-        if t.is_empty() || t.starts_with('#') {
+        if t.is_empty() || t.starts_with('#') || is_plain_header(t) {
             continue;
         }
         let f = split_fields(t);
@@ -228,6 +360,15 @@ fn decode_xyz_body(mut st: Settle, text: &str, h: Header) -> Result<Measurement>
         }
         if zs.len() >= opts.max_points {
             st.check_points(zs.len() as u64 + 1, 1)?;
+        }
+        for (c, v) in [(1, f[0]), (2, f[1])] {
+            let x = parse_value(&st, v, k + 1, c)?;
+            if !x.is_finite() {
+                return Err(st.err(
+                    format!("line {}, column {c}", k + 1),
+                    format!("{v:?}: an x or y coordinate must be a finite number"),
+                ));
+            }
         }
         xs.push(parse_value(&st, f[0], k + 1, 1)?);
         ys.push(parse_value(&st, f[1], k + 1, 2)?);

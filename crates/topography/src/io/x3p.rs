@@ -11,8 +11,8 @@
 //!   (f64), optional `Increment` and `Offset` (z = Offset + Increment * raw);
 //! * `Record3/MatrixDimension/SizeX`, `SizeY`, `SizeZ` (= 1 layer);
 //! * the data: little-endian values, x fastest, or `Record3/DataList/Datum` elements;
-//!   `MD5ChecksumPointData`, when present, is verified; invalid points (NaN, or a 0 bit in
-//!   `bindata/valid.bin`) are refused.
+//!   `MD5ChecksumPointData`, when present, is verified; invalid points (NaN, an empty
+//!   `Datum`, or a 0 bit in `bindata/valid.bin`) are undefined points.
 //!
 //! x3p stores SI units (metres) by definition, so the height unit is known.
 
@@ -40,7 +40,7 @@ fn hex(d: &[u8]) -> String {
 }
 
 /// Reads a zip entry with a cap, checking the declared size first.
-fn entry(
+pub(crate) fn entry(
     st: &Settle,
     zip: &mut zip::ZipArchive<Cursor<&[u8]>>,
     name: &str,
@@ -117,7 +117,20 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         MAX_XML.min(opts.max_bytes),
         false,
     )?
-    .ok_or_else(|| st.err("archive", "no main.xml entry"))?;
+    .ok_or_else(|| {
+        st.err(
+            "archive",
+            if zip
+                .file_names()
+                .filter_map(|r| r.ok())
+                .any(|n| n == "index.xml")
+            {
+                "no main.xml entry (an index.xml: a Sensofar .plux file? read it as plu)"
+            } else {
+                "no main.xml entry"
+            },
+        )
+    })?;
     let xml = std::str::from_utf8(&xml_bytes).map_err(|_| st.err("main.xml", "not UTF-8"))?;
     let doc = roxmltree::Document::parse(xml).map_err(|e| st.err("main.xml", e.to_string()))?;
     let root = doc.root_element();
@@ -147,7 +160,15 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
     if feature != "SUR" {
         return Err(st.err(
             field(&["Record1", "FeatureType"]),
-            format!("{feature}: only areal surfaces (SUR) are height maps (PRF is a profile, PCL a point cloud)"),
+            match feature {
+                "PRF" => {
+                    "PRF: a 1-D profile: the model needs a 2-D height map (an areal surface, SUR)"
+                        .to_string()
+                }
+                _ => format!(
+                    "{feature}: only areal surfaces (SUR) are height maps (PCL is a point cloud)"
+                ),
+            },
         ));
     }
     let mut inc = [0.0; 2];
@@ -199,7 +220,7 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         ));
     }
     let n = st.check_points(nx, ny)?;
-    let raw: Vec<f64> = if let Some(link) = get(&["Record3", "DataLink", "PointDataLink"]) {
+    let mut raw: Vec<f64> = if let Some(link) = get(&["Record3", "DataLink", "PointDataLink"]) {
         let want = n as u64 * size;
         let data = entry(&st, &mut zip, link, want, true)?.ok_or_else(|| {
             st.err(
@@ -283,14 +304,19 @@ pub(crate) fn decode(path: &Path, bytes: &[u8], opts: &ReadOptions) -> Result<Me
         (n as u64).div_ceil(8),
         false,
     )? {
-        let invalid = (0..n)
+        let invalid: Vec<usize> = (0..n)
             .filter(|&k| valid.get(k / 8).is_none_or(|b| b & (1 << (k % 8)) == 0))
-            .count();
-        if invalid > 0 {
-            return Err(st.err(
-                "archive entry bindata/valid.bin",
-                format!("{invalid} of {n} points are marked invalid; fill or crop them first"),
+            .collect();
+        if !invalid.is_empty() {
+            st.notes.push(format!(
+                "bindata/valid.bin marks {} of {n} points invalid: they are undefined points",
+                invalid.len()
             ));
+        }
+        for k in invalid {
+            if let Some(v) = raw.get_mut(k) {
+                *v = f64::NAN;
+            }
         }
     }
     let z: Vec<f64> = raw.into_iter().map(|r| z_off + z_inc * r).collect();
