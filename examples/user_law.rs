@@ -33,19 +33,14 @@ impl PlasticityLaw for FlatTop {
     fn state(&self, delta_max: f64) -> PlasticState {
         let omega = delta_max / self.delta_cp;
         if !(omega > 1.0) {
-            return PlasticState {
-                delta_max: delta_max.max(0.0),
-                delta_res: 0.0,
-                r_res: self.radius,
-                extrapolated: false,
-            };
+            return PlasticState::new(delta_max.max(0.0), 0.0, self.radius, false);
         }
-        PlasticState {
+        PlasticState::new(
             delta_max,
-            delta_res: delta_max - self.delta_cp,
-            r_res: self.radius * (1.0 + self.hardening * (omega - 1.0)),
-            extrapolated: false,
-        }
+            delta_max - self.delta_cp,
+            self.radius * (1.0 + self.hardening * (omega - 1.0)),
+            false,
+        )
     }
     fn effective_radius(&self, state: &PlasticState, _delta: f64) -> f64 {
         state.r_res

@@ -774,7 +774,7 @@ fn words_a_key_does_not_take_are_refused_before_any_point_runs() {
             "--vary",
             bad,
             "`kogut_etsoin` is not a registered plasticity law",
-            "etsion_kadin, kogut_etsion, elastic",
+            "etsion_kadin, kogut_etsion, adhesion_coupled, elastic",
         ],
     );
     fails(

@@ -440,7 +440,7 @@ class Laws(Record):
     """The laws and modelling choices of a run."""
 
     adhesion: str  #: adhesion law (maugis_kim, jkr, dmt, hertz, ...)
-    plasticity: str  #: plasticity law (etsion_kadin, kogut_etsion, elastic, ...)
+    plasticity: str  #: plasticity law (etsion_kadin, kogut_etsion, adhesion_coupled, elastic, ...)
     yield_modulus: str  #: reading of eq 1 (as_printed | composite)
     reload: str  #: reload rule (as_printed | bounded)
 

@@ -228,7 +228,7 @@ def test_a_law_axis_point_is_the_single_law_maps(law_scene, law_map):
 def test_an_unknown_law_is_input_naming_the_word(law_scene):
     with pytest.raises(stiction.InputError, match="kogut_etsoin") as e:
         stiction.design_map(law_scene, ["contact.plasticity_law=etsion_kadin,kogut_etsoin"])
-    assert "etsion_kadin, kogut_etsion, elastic" in str(e.value)
+    assert "etsion_kadin, kogut_etsion, adhesion_coupled, elastic" in str(e.value)
     with pytest.raises(stiction.InputError, match="takes numbers"):
         stiction.design_map(law_scene, ["switch.k_s=soft,stiff"])
 

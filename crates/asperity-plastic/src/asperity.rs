@@ -183,7 +183,48 @@ impl<P: PlasticityLaw, A: AdhesionLaw> ElastoPlasticAsperity<P, A> {
                 from: from - e.state.delta_res,
             },
         };
+        if self.plasticity.couples_adhesion() {
+            return (e, delta_max, self.coupled_path(delta, history, path, &e));
+        }
         (e, delta_max, path)
+    }
+
+    /// The path the adhesion law sees under a law whose plastic state the adhesive contact
+    /// drives (theory 2.8). Such a law can leave the residual height above the interference
+    /// that made it (delta_res > delta_max: adhesion pulled the flattened tip into contact),
+    /// so the effective interference of a contact can be negative. An asperity that is in
+    /// adhesive contact (loaded beyond its virgin jump-in, and either loading now or
+    /// retracting from that loading) is on the adhesion law's contact branch: the path says
+    /// so by an excursion that reached at least the effective sphere's jump-in. A
+    /// re-approach below the history jumps in on the deformed sphere, as with any law.
+    fn coupled_path(
+        &self,
+        delta: f64,
+        history: AsperityHistory,
+        path: Path,
+        e: &EffectiveSphere,
+    ) -> Path {
+        let virgin_jump_in = match self.adhesion.jump_in(self.plasticity.radius()) {
+            Ok(j) => j,
+            Err(_) => return path,
+        };
+        let touching = |reach: f64| {
+            let jump_in = self.adhesion.jump_in(e.radius).unwrap_or(f64::INFINITY);
+            Path::Retract {
+                from: reach.max(crate::coupled::contact_reach(jump_in)),
+            }
+        };
+        match path {
+            Path::Approach if delta >= history.delta_max && delta > virgin_jump_in => {
+                touching(e.interference)
+            }
+            Path::Retract { from }
+                if history.delta_max.max(from + e.state.delta_res) > virgin_jump_in =>
+            {
+                touching(from)
+            }
+            p => p,
+        }
     }
 }
 
@@ -240,6 +281,19 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
         if !dcp.is_finite() {
             return Vec::new();
         }
+        if self.plasticity.couples_adhesion() {
+            // the state jumps or bends at the law's own breaks (the jump-in, the geometric
+            // yield onset), below delta_CP
+            let mut b: Vec<f64> = self
+                .plasticity
+                .breaks()
+                .into_iter()
+                .filter(|x| x.is_finite())
+                .collect();
+            b.sort_by(f64::total_cmp);
+            b.dedup();
+            return b;
+        }
         let mut b = vec![dcp];
         b.extend(
             self.plasticity
@@ -252,6 +306,10 @@ impl<P: PlasticityLaw, A: AdhesionLaw> AsperityModel for ElastoPlasticAsperity<P
 
     fn fit_range(&self) -> Option<(f64, f64)> {
         self.plasticity.fit_range()
+    }
+
+    fn fit_interference(&self, omega: f64) -> f64 {
+        self.plasticity.fit_interference(omega)
     }
 
     fn yielding_body(&self) -> Option<contact_core::YieldingBody> {

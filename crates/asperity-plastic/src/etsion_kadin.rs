@@ -259,6 +259,7 @@ impl PlasticityLaw for EtsionKadin {
                 delta_res: 0.0,
                 r_res: self.radius,
                 extrapolated: false,
+                adhesive_displacement: 0.0,
             };
         }
         let omega = delta_max / self.delta_cp;
@@ -267,6 +268,7 @@ impl PlasticityLaw for EtsionKadin {
             delta_res: delta_max * residual_ratio(omega),
             r_res: self.radius * (1.0 + self.k_res * (omega - 1.0)),
             extrapolated: omega > FIT_RANGE_MAX,
+            adhesive_displacement: 0.0,
         }
     }
 
@@ -349,6 +351,7 @@ impl PlasticityLaw for Elastic {
             delta_res: 0.0,
             r_res: self.radius,
             extrapolated: false,
+            adhesive_displacement: 0.0,
         }
     }
     fn effective_radius(&self, state: &PlasticState, _delta: f64) -> f64 {

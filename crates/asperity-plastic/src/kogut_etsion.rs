@@ -420,6 +420,7 @@ impl PlasticityLaw for KogutEtsion {
                 delta_res: 0.0,
                 r_res: self.radius,
                 extrapolated: false,
+                adhesive_displacement: 0.0,
             };
         }
         PlasticState {
@@ -427,6 +428,7 @@ impl PlasticityLaw for KogutEtsion {
             delta_res: delta_max * Self::residual_ratio(omega),
             r_res: self.radius * self.residual_radius_ratio(omega),
             extrapolated: omega > KE_FULLY_PLASTIC,
+            adhesive_displacement: 0.0,
         }
     }
 

@@ -8,6 +8,9 @@
 //! * [`KogutEtsion`]: a second law family, Kogut & Etsion's (2002) loading force and area
 //!   with Etsion, Kligerman & Kadin's (2005) residual state and unloading force, the radius
 //!   the adhesion law sees derived from the published forces (`docs/theory.md` 2.7).
+//! * [`AdhesionCoupled`]: either law driven by the adhesive contact itself (the Hertz
+//!   interference a^2/R of the adhesion law's contact), for soft metals such as gold,
+//!   where adhesion alone yields an asperity (theory 2.8).
 //! * [`Elastic`]: never yields.
 //! * [`ElastoPlasticAsperity`]: any [`PlasticityLaw`] composed with any
 //!   [`AdhesionLaw`], implementing [`AsperityModel`], with its pull-off.
@@ -29,12 +32,14 @@
 struct ReadmeDoctests;
 
 mod asperity;
+mod coupled;
 mod error;
 mod etsion_kadin;
 mod kogut_etsion;
 mod onset;
 
 pub use asperity::{EffectiveSphere, ElastoPlasticAsperity, PullOff, Reload, PULL_OFF_TOLERANCE};
+pub use coupled::AdhesionCoupled;
 pub use error::PlasticError;
 pub use etsion_kadin::{
     EffectiveRadiusFit, Elastic, EtsionKadin, YieldModulus, YieldingBody, FIT_RANGE_MAX,

@@ -106,6 +106,25 @@ pub struct PlasticState {
     pub r_res: f64,
     /// True when delta_max lies beyond the range of the fits the law was built on.
     pub extrapolated: bool,
+    /// The elastic displacement delta_a (m) the adhesive stresses added to the contact at
+    /// delta_max, for a law whose state the adhesive contact drives (theory 2.8): its
+    /// fits were read at the Hertz interference delta_max + delta_a. Zero for a law
+    /// uncoupled from adhesion.
+    pub adhesive_displacement: f64,
+}
+
+impl PlasticState {
+    /// The state of a law uncoupled from adhesion (no adhesive displacement): what a user's
+    /// law returns from [`PlasticityLaw::state`], proof against fields added later.
+    pub fn new(delta_max: f64, delta_res: f64, r_res: f64, extrapolated: bool) -> Self {
+        Self {
+            delta_max,
+            delta_res,
+            r_res,
+            extrapolated,
+            adhesive_displacement: 0.0,
+        }
+    }
 }
 
 /// Which body of a contact pair governs plasticity: the one that yields first.
@@ -177,6 +196,24 @@ pub trait PlasticityLaw {
     fn yielding_body(&self) -> Option<YieldingBody> {
         None
     }
+
+    /// The interference delta_max (m) at which the fits are read at omega delta_CP: omega
+    /// delta_CP itself for a law driven by the geometric interference (the default), less
+    /// the adhesive displacement for one driven by the adhesive contact. The guards' fitted
+    /// range (`beyond_fit_range`) is checked through it.
+    fn fit_interference(&self, omega: f64) -> f64 {
+        omega * self.delta_cp()
+    }
+
+    /// Whether the law's state is driven by the adhesive contact itself (the
+    /// `adhesion_coupled` law) rather than by the geometric interference alone: such a law
+    /// does not assume plasticity uncoupled from adhesion (the guard
+    /// `adhesion_yields_asperity` is then no breach of its validity), and an asperity in
+    /// adhesive contact stays on the adhesion law's contact branch while it loads. False by
+    /// default.
+    fn couples_adhesion(&self) -> bool {
+        false
+    }
 }
 
 impl<T: AdhesionLaw + ?Sized> AdhesionLaw for &T {
@@ -228,6 +265,12 @@ impl<T: PlasticityLaw + ?Sized> PlasticityLaw for &T {
     fn yielding_body(&self) -> Option<YieldingBody> {
         (**self).yielding_body()
     }
+    fn couples_adhesion(&self) -> bool {
+        (**self).couples_adhesion()
+    }
+    fn fit_interference(&self, omega: f64) -> f64 {
+        (**self).fit_interference(omega)
+    }
 }
 
 macro_rules! plasticity_through {
@@ -259,6 +302,12 @@ macro_rules! plasticity_through {
             }
             fn yielding_body(&self) -> Option<YieldingBody> {
                 (**self).yielding_body()
+            }
+            fn couples_adhesion(&self) -> bool {
+                (**self).couples_adhesion()
+            }
+            fn fit_interference(&self, omega: f64) -> f64 {
+                (**self).fit_interference(omega)
             }
         }
     };
@@ -297,7 +346,8 @@ adhesion_through!(Box);
 adhesion_through!(Arc);
 
 /// History of one asperity: the largest interference it has ever reached (m). A value
-/// at or below zero means it has never been pressed.
+/// at or below zero means it has never been pressed (it may have been in adhesive contact:
+/// an adhesive sphere jumps in at a negative interference).
 #[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AsperityHistory {
@@ -306,8 +356,11 @@ pub struct AsperityHistory {
 }
 
 impl AsperityHistory {
-    /// An asperity that has never been in contact.
-    pub const VIRGIN: Self = Self { delta_max: 0.0 };
+    /// An asperity that has never been in contact (delta_max = -infinity: not even the
+    /// adhesive contact of a jump-in at a negative interference).
+    pub const VIRGIN: Self = Self {
+        delta_max: f64::NEG_INFINITY,
+    };
 }
 
 /// One asperity with a memory: the force at an interference, given its history and path.
@@ -366,6 +419,12 @@ pub trait AsperityModel {
     /// The omega range of the plasticity law's fits ([`PlasticityLaw::fit_range`]).
     fn fit_range(&self) -> Option<(f64, f64)> {
         None
+    }
+
+    /// The interference (m) at which the fits are read at omega delta_CP
+    /// ([`PlasticityLaw::fit_interference`]); omega delta_CP by default.
+    fn fit_interference(&self, omega: f64) -> f64 {
+        omega * self.delta_cp()
     }
 
     /// The body that yields first ([`PlasticityLaw::yielding_body`]).

@@ -231,15 +231,16 @@ impl<M: AsperityModel> GreenwoodWilliamson<M> {
             return None;
         }
         let top = TAIL_SIGMAS * self.sigma_s();
+        let at = self.asperity.fit_interference(ratio);
         match history.deepest() {
-            Some(deep) if deep.is_finite() => Some(deep + ratio * dcp),
+            Some(deep) if deep.is_finite() => Some(deep + at),
             Some(_) => None,
             None => {
                 // delta_max(h) increases with h for histories made by flats
                 let n = 4000;
                 (0..=n)
                     .map(|i| -top + 2.0 * top * i as f64 / n as f64)
-                    .find(|&h| history.delta_max(h) > ratio * dcp)
+                    .find(|&h| history.delta_max(h) > at)
             }
         }
     }

@@ -7,7 +7,7 @@
 use crate::error::ModelError;
 use crate::spec::{Asperity, ContactSpec, Counter};
 use contact_core::numeric::{brent_from, expand_bracket, Expansion, Sample, Tolerance};
-use contact_core::{AsperityHistory, AsperityModel, Path, YieldingBody};
+use contact_core::{AsperityHistory, AsperityModel, Path, PlasticityLaw, YieldingBody};
 use serde::Serialize;
 
 /// Tabor's constraint factor: the hardness of a plastically indented surface is about
@@ -218,6 +218,8 @@ pub fn zero_load_interference(elastic: &Asperity) -> Result<f64, ModelError> {
 
 /// `adhesion_yields_asperity`: adhesion alone presses a virgin asperity beyond delta_CP
 /// (the paper's caveat for gold: plastic deformation is then not uncoupled from adhesion).
+/// A validity breach for a plasticity law that assumes the uncoupling; a note for one whose
+/// state the adhesive contact drives ([`contact_core::PlasticityLaw::couples_adhesion`]).
 pub fn adhesion_yields(contact: &ContactSpec) -> Result<Option<Warning>, ModelError> {
     let plastic = contact.asperity();
     let dcp = plastic.delta_cp();
@@ -240,15 +242,28 @@ pub fn adhesion_yields(contact: &ContactSpec) -> Result<Option<Warning>, ModelEr
         ) => ("counter-surface", youngs_modulus, yield_stress),
         _ => ("asperity", contact.youngs_modulus, contact.yield_stress),
     };
+    let what = format!(
+        "adhesion alone presses an asperity to {} at zero load, beyond its yield onset delta_CP = {} ({body} yields first: E = {}, S_Y = {}; w = {} J/m^2)",
+        si(d0, "m", 3),
+        si(dcp, "m", 3),
+        si(e, "Pa", 4),
+        si(s_y, "Pa", 4),
+        crate::keys::num(contact.work_of_adhesion),
+    );
+    // a breach only for a law that assumes plasticity uncoupled from adhesion
+    if contact.plasticity.law.couples_adhesion() {
+        return Ok(Some(Warning::note(
+            code::ADHESION_YIELDS,
+            format!(
+                "{what}: plasticity_law = \"{}\" drives the plastic state by the adhesive contact, so this is inside its model",
+                contact.plasticity.name
+            ),
+        )));
+    }
     Ok(Some(Warning::invalid(
         code::ADHESION_YIELDS,
         format!(
-            "adhesion alone presses an asperity to {} at zero load, beyond its yield onset delta_CP = {} ({body} yields first: E = {}, S_Y = {}; w = {} J/m^2): the model assumes plasticity uncoupled from adhesion, which does not hold here (the paper's caveat for gold)",
-            si(d0, "m", 3),
-            si(dcp, "m", 3),
-            si(e, "Pa", 4),
-            si(s_y, "Pa", 4),
-            crate::keys::num(contact.work_of_adhesion),
+            "{what}: the model assumes plasticity uncoupled from adhesion, which does not hold here (the paper's caveat for gold; plasticity_law = \"adhesion_coupled\" does not assume it)"
         ),
     )))
 }
@@ -264,7 +279,16 @@ pub fn fit_range_max(contact: &ContactSpec) -> Option<f64> {
 pub fn asperity_beyond_fit(contact: &ContactSpec, delta_max: &[f64]) -> Option<Warning> {
     let hi = fit_range_max(contact)?;
     let dcp = contact.asperity().delta_cp();
-    let omegas: Vec<f64> = delta_max.iter().map(|d| d / dcp).collect();
+    // the fits are read at the Hertz interference (delta_max itself for a law uncoupled
+    // from adhesion)
+    let law = &contact.plasticity.law;
+    let omegas: Vec<f64> = delta_max
+        .iter()
+        .map(|&d| {
+            let st = law.state(d);
+            (d + st.adhesive_displacement) / dcp
+        })
+        .collect();
     let worst = omegas.iter().fold(0.0f64, |m, &w| m.max(w));
     let beyond = omegas.iter().filter(|&&w| w > hi).count();
     (worst > hi).then(|| {

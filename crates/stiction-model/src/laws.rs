@@ -28,7 +28,9 @@
 use crate::error::ModelError;
 use crate::keys::{Default, Domain};
 use crate::spec::Counter;
-use asperity_plastic::{EffectiveRadiusFit, Elastic, EtsionKadin, KogutEtsion, YieldModulus};
+use asperity_plastic::{
+    AdhesionCoupled, EffectiveRadiusFit, Elastic, EtsionKadin, KogutEtsion, YieldModulus,
+};
 use contact_core::{AdhesionLaw, LawError, Pair, PlasticityLaw};
 use maugis_kim::{Dmt, DugdaleParams, Hertz, Jkr, JkrParams, MaugisKim};
 use std::collections::BTreeMap;
@@ -124,7 +126,7 @@ impl LawParams {
 
 /// What a law's constructor sees: the contact pair built from the scene (both bodies, E*,
 /// the radius), the scene's contact constants and the law's own parameters.
-#[derive(Debug, Clone, Copy)]
+#[derive(Clone, Copy)]
 pub struct LawContext<'a> {
     /// The pair: moduli, Poisson ratios, yield stresses, E*, K and the asperity radius.
     pub pair: &'a Pair,
@@ -136,6 +138,22 @@ pub struct LawContext<'a> {
     pub yield_modulus: YieldModulus,
     /// The law's parameters, validated against its list.
     pub params: &'a LawParams,
+    /// The scene's adhesion law, when a plasticity law is built (None while the adhesion
+    /// law itself is): a law whose plastic state the adhesive contact drives reads it.
+    pub adhesion: Option<&'a DynAdhesion>,
+}
+
+impl std::fmt::Debug for LawContext<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LawContext")
+            .field("pair", self.pair)
+            .field("work_of_adhesion", &self.work_of_adhesion)
+            .field("z0", &self.z0)
+            .field("yield_modulus", &self.yield_modulus)
+            .field("params", self.params)
+            .field("adhesion", &self.adhesion.map(|_| "an adhesion law"))
+            .finish()
+    }
 }
 
 type AdhesionBuild = dyn Fn(&LawContext) -> Result<DynAdhesion, LawError> + Send + Sync;
@@ -149,6 +167,7 @@ pub struct AdhesionEntry {
     params: Vec<Param>,
     build: Arc<AdhesionBuild>,
     credible: bool,
+    where_adhesion_yields: bool,
 }
 
 /// A registered plasticity law.
@@ -159,6 +178,7 @@ pub struct PlasticityEntry {
     params: Vec<Param>,
     build: Arc<PlasticityBuild>,
     credible: bool,
+    where_adhesion_yields: bool,
 }
 
 macro_rules! entry_common {
@@ -178,6 +198,7 @@ macro_rules! entry_common {
                     params,
                     build: Arc::new(build),
                     credible: true,
+                    where_adhesion_yields: false,
                 }
             }
 
@@ -188,10 +209,24 @@ macro_rules! entry_common {
                 self
             }
 
+            /// The entry marked as a credible alternative form only where adhesion alone
+            /// yields a virgin asperity (`adhesion_yields_asperity`): a law for the regime
+            /// where the uncoupled laws' assumption fails.
+            pub fn credible_where_adhesion_yields(mut self) -> Self {
+                self.where_adhesion_yields = true;
+                self
+            }
+
             /// Whether a model-form check tries this law as an alternative
-            /// ([`crate::model_form`]).
+            /// ([`crate::model_form`]); see also [`Self::only_where_adhesion_yields`].
             pub fn credible(&self) -> bool {
                 self.credible
+            }
+
+            /// Whether the law is an alternative only where adhesion alone yields a virgin
+            /// asperity.
+            pub fn only_where_adhesion_yields(&self) -> bool {
+                self.where_adhesion_yields
             }
 
             /// The name scenes give.
@@ -257,7 +292,7 @@ impl LawRegistry {
     }
 
     /// The built-in laws: adhesion `maugis_kim`, `jkr`, `dmt`, `hertz`; plasticity
-    /// `etsion_kadin`, `kogut_etsion`, `elastic`.
+    /// `etsion_kadin`, `kogut_etsion`, `adhesion_coupled`, `elastic`.
     pub fn builtin() -> Self {
         let mut r = Self::empty();
         for e in builtin_adhesion() {
@@ -380,6 +415,31 @@ pub const ETSION_KADIN_PARAMS: &[Param] = &[
     },
 ];
 
+/// The parameters of `adhesion_coupled`: the uncoupled law whose fits it drives.
+pub const ADHESION_COUPLED_PARAMS: &[Param] = &[
+    Param {
+        name: "base",
+        unit: "-",
+        domain: Domain::Choice(&["etsion_kadin", "kogut_etsion"]),
+        default: Default::Word("etsion_kadin"),
+        help: "the uncoupled law whose state (eqs 4-5, 12) is read at the Hertz interference of the adhesive contact",
+    },
+    Param {
+        name: "c1",
+        unit: "-",
+        domain: Domain::Triple,
+        default: Default::Triple(EffectiveRadiusFit::PAPER.c1),
+        help: "eq 13's c1 of the etsion_kadin base (as etsion_kadin's; `stiction calibrate` fits it)",
+    },
+    Param {
+        name: "c2",
+        unit: "-",
+        domain: Domain::Triple,
+        default: Default::Triple(EffectiveRadiusFit::PAPER.c2),
+        help: "eq 13's c2 of the etsion_kadin base",
+    },
+];
+
 fn builtin_plasticity() -> Vec<PlasticityEntry> {
     vec![
         PlasticityEntry::new(
@@ -402,6 +462,32 @@ fn builtin_plasticity() -> Vec<PlasticityEntry> {
             vec![],
             |ctx| Ok(Arc::new(KogutEtsion::new(ctx.pair, ctx.yield_modulus)?)),
         ),
+        PlasticityEntry::new(
+            "adhesion_coupled",
+            "the state of etsion_kadin (or kogut_etsion) driven by the Hertz interference a^2/R of the adhesive contact, not the geometric interference alone: adhesion itself yields the asperity (Maugis & Pollock 1984; docs/theory.md 2.8)",
+            ADHESION_COUPLED_PARAMS.to_vec(),
+            |ctx| {
+                let adhesion = ctx.adhesion.cloned().ok_or_else(|| {
+                    LawError::from(contact_core::CoreError::Invalid {
+                        field: "adhesion law",
+                        value: f64::NAN,
+                        allowed: "the scene's adhesion law (adhesion_coupled reads its contact radius)",
+                    })
+                })?;
+                let base: DynPlasticity = match ctx.params.word("base") {
+                    Some("kogut_etsion") => Arc::new(KogutEtsion::new(ctx.pair, ctx.yield_modulus)?),
+                    _ => {
+                        let fit = EffectiveRadiusFit::new(
+                            ctx.params.triple("c1").unwrap_or(EffectiveRadiusFit::PAPER.c1),
+                            ctx.params.triple("c2").unwrap_or(EffectiveRadiusFit::PAPER.c2),
+                        )?;
+                        Arc::new(EtsionKadin::new(ctx.pair, ctx.yield_modulus)?.with_fit(fit))
+                    }
+                };
+                Ok(Arc::new(AdhesionCoupled::new(base, adhesion)?))
+            },
+        )
+        .credible_where_adhesion_yields(),
         PlasticityEntry::new(
             "elastic",
             "never yields: the asperity keeps its radius and height",

@@ -249,6 +249,8 @@ impl Forms {
     pub fn of(spec: &SwitchSpec, registry: &LawRegistry) -> Self {
         let own = Form::of(&spec.contact);
         let mut excluded = Vec::new();
+        // a law for the regime where the uncoupled laws' assumption fails is tried there
+        let adhesion_yields = matches!(crate::guards::adhesion_yields(&spec.contact), Ok(Some(_)));
         let lambda = spec.contact.lambda();
         let values = |choice: Choice, excluded: &mut Vec<Excluded>| -> Vec<String> {
             let mut v: Vec<String> = vec![own.get(choice).to_string()];
@@ -262,11 +264,21 @@ impl Forms {
                 return v;
             }
             match choice {
-                Choice::Plasticity => registry
-                    .plasticity_laws()
-                    .iter()
-                    .filter(|e| e.credible())
-                    .for_each(|e| add(&mut v, e.name())),
+                Choice::Plasticity => {
+                    for e in registry.plasticity_laws().iter().filter(|e| e.credible()) {
+                        if e.only_where_adhesion_yields() && !adhesion_yields {
+                            if !v.iter().any(|x| x == e.name()) {
+                                excluded.push(Excluded {
+                                    choice: choice.as_str().into(),
+                                    value: e.name().into(),
+                                    reason: "adhesion does not yield a virgin asperity here (no adhesion_yields_asperity), so the uncoupled laws' assumption holds: pin it with model_form_plasticity to include it".into(),
+                                });
+                            }
+                            continue;
+                        }
+                        add(&mut v, e.name());
+                    }
+                }
                 Choice::YieldModulus => YIELD_MODULI.iter().for_each(|w| add(&mut v, w)),
                 Choice::Reload => RELOADS.iter().for_each(|w| add(&mut v, w)),
                 Choice::Adhesion => {

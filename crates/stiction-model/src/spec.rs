@@ -1144,6 +1144,7 @@ impl<'a> Reader<'a> {
                 z0,
                 yield_modulus,
                 params: &params,
+                adhesion: None,
             })
             .map_err(|e| self.law_error("contact.adhesion", "contact.adhesion_law", &name, e))?;
         let adhesion = Chosen { name, params, law };
@@ -1202,6 +1203,7 @@ impl<'a> Reader<'a> {
                 z0,
                 yield_modulus,
                 params: &params,
+                adhesion: Some(&adhesion.law),
             })
             .map_err(|e| match e {
             contact_core::LawError::Law { ref source, .. }
