@@ -11,9 +11,10 @@ use stiction_model::topography::{run, TopographyRequest};
 /// `stiction.topography(path, ...)`: the report (the command's JSON), the height map as
 /// read (m, rows = y, `dx`, `dy`), the `[surface]` scene fragment and its warnings; the
 /// options as the command line's (`file_format`, `spacing`, `height_unit`, `xy_unit`,
-/// `detrend`, `route`, `undefined`, `channel`), errors naming them.
+/// `detrend`, `route`, `undefined`, `channel`, `cutoff`, `contact_radius`), errors naming
+/// them.
 #[pyfunction]
-#[pyo3(signature = (path, file_format = None, spacing = None, height_unit = None, xy_unit = None, detrend = None, route = None, undefined = None, channel = None))]
+#[pyo3(signature = (path, file_format = None, spacing = None, height_unit = None, xy_unit = None, detrend = None, route = None, undefined = None, channel = None, cutoff = None, contact_radius = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn topography<'py>(
     py: Python<'py>,
@@ -26,6 +27,8 @@ pub fn topography<'py>(
     route: Option<String>,
     undefined: Option<String>,
     channel: Option<String>,
+    cutoff: Option<f64>,
+    contact_radius: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let request = TopographyRequest {
         file_format,
@@ -36,6 +39,8 @@ pub fn topography<'py>(
         route,
         undefined,
         channel,
+        cutoff,
+        contact_radius,
     };
     let r = crate::pool::detach(py, move || run(&path, &request)).or_raise()?;
     let d = PyDict::new(py);

@@ -492,6 +492,8 @@ def topography(
     route: Optional[str] = None,
     undefined: Optional[str] = None,
     channel: Optional[Union[str, int]] = None,
+    cutoff: Optional[float] = None,
+    contact_radius: Optional[float] = None,
 ) -> TopographyResult:
     """A measured height map (AFM, profilometer) reduced to the Greenwood-Williamson
     parameters of a scene, as ``stiction topography FILE``: the report (``to_dict()`` is
@@ -504,12 +506,18 @@ def topography(
     the default, or fill: the file's undefined points filled by harmonic interpolation;
     ``to_dict()["source"]["undefined_points"]`` counts them) and `channel` (a name or a
     0-based index among ``to_dict()["source"]["channels"]``; default the first height
-    channel); a bad one raises :class:`InputError` naming it (docs/topography.md)."""
+    channel), `cutoff` (m: the short-wavelength cutoff, the map low-pass filtered at it
+    before the analysis, a Gaussian of ISO 16610-61; 0 or a cutoff at the pixel scale: the map
+    as sampled) and `contact_radius` (m: the asperity tip radius R whose contact-spot scale
+    gives the default cutoff, 4 sqrt(R sigma_s)); ``to_dict()["cutoff"]`` says which band was
+    taken and ``to_dict()["band"]`` repeats both routes across a few cutoffs. A bad option
+    raises :class:`InputError` naming it (docs/topography.md sections 9 and 10)."""
     for name, value in (("file_format", file_format), ("height_unit", height_unit), ("xy_unit", xy_unit),
                         ("detrend", detrend), ("route", route), ("undefined", undefined)):
         _word(name, value)
-    if spacing is not None and (isinstance(spacing, bool) or not isinstance(spacing, (int, float))):
-        raise InputError(f"invalid spacing = {spacing!r}: must be a length in m")
+    for name, value in (("spacing", spacing), ("cutoff", cutoff), ("contact_radius", contact_radius)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))):
+            raise InputError(f"invalid {name} = {value!r}: must be a length in m")
     if channel is not None:
         if isinstance(channel, bool) or not isinstance(channel, (str, int)):
             raise InputError(f"invalid channel = {channel!r}: must be a channel's name (a str) or its 0-based index")
@@ -517,8 +525,9 @@ def topography(
             if channel < 0:
                 raise InputError(f"invalid channel = {channel!r}: an index is 0 or more")
             channel = str(channel)
-    native = _stiction.topography(os.fspath(path), file_format, None if spacing is None else float(spacing),
-                                  height_unit, xy_unit, detrend, route, undefined, channel)
+    spacing, cutoff, contact_radius = (None if v is None else float(v) for v in (spacing, cutoff, contact_radius))
+    native = _stiction.topography(os.fspath(path), file_format, spacing, height_unit, xy_unit, detrend, route,
+                                  undefined, channel, cutoff, contact_radius)
     return TopographyResult._of_native(native)
 
 

@@ -325,5 +325,7 @@ def topography(
     route: Optional[str] = None,
     undefined: Optional[str] = None,
     channel: Optional[str] = None,
+    cutoff: Optional[float] = None,
+    contact_radius: Optional[float] = None,
 ) -> Dict[str, Any]:
     """The analysis of a height map: report, heights, dx, dy, fragment, warnings."""

@@ -30,20 +30,98 @@ pub struct Ctx<'a> {
 }
 
 /// The options of every command that reads a scene.
-#[derive(Debug, Clone, Default, clap::Args)]
+#[derive(Debug, Clone, Default)]
 pub struct SceneArgs {
+    /// The scene files (`--scene`, repeatable, merged in order); the paper's scene if none.
+    pub scene: SceneFiles,
+    /// `--set KEY=VALUE` edits.
+    pub set: Vec<String>,
+    /// `--strict`.
+    pub strict: bool,
+}
+
+/// The `--scene` files of a command, in the order given.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct SceneFiles(pub Vec<PathBuf>);
+
+impl SceneFiles {
+    /// Whether no scene file was given (the paper's scene).
+    pub fn is_none(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// Whether a scene file was given.
+    pub fn is_some(&self) -> bool {
+        !self.0.is_empty()
+    }
+
+    /// The first scene file, if any.
+    pub fn as_deref(&self) -> Option<&Path> {
+        self.0.first().map(PathBuf::as_path)
+    }
+}
+
+/// The options of [`SceneArgs`] as the command line gives them (clap derives the parser;
+/// [`SceneArgs`] holds the files as [`SceneFiles`]).
+#[derive(Debug, Clone, Default, clap::Args)]
+struct SceneArgsCli {
     /// Scene file (TOML, or JSON if it ends in .json or starts with `{`); the paper's scene
-    /// if absent.
+    /// if absent. Repeatable: the files are merged in order, a later file's key replacing
+    /// an earlier one's (--scene switch.toml --scene surface.toml takes the switch from the
+    /// first and the roughness of the fragment `stiction topography --out` writes).
     #[arg(long, value_name = "FILE")]
-    pub scene: Option<PathBuf>,
+    scene: Vec<PathBuf>,
     /// Set a scene key before validation, KEY=VALUE with KEY as `section.key` and VALUE a
     /// TOML value or a bare word (repeatable): --set contact.reload=bounded --set cycles=20.
     #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
+    set: Vec<String>,
     /// Exit with status 3 when the model does not hold for the result (the verdict's
     /// "outside the model's validity"); the result is written all the same.
     #[arg(long)]
-    pub strict: bool,
+    strict: bool,
+}
+
+impl From<SceneArgsCli> for SceneArgs {
+    fn from(c: SceneArgsCli) -> Self {
+        SceneArgs {
+            scene: SceneFiles(c.scene),
+            set: c.set,
+            strict: c.strict,
+        }
+    }
+}
+
+impl From<SceneArgs> for SceneArgsCli {
+    fn from(a: SceneArgs) -> Self {
+        SceneArgsCli {
+            scene: a.scene.0,
+            set: a.set,
+            strict: a.strict,
+        }
+    }
+}
+
+impl clap::FromArgMatches for SceneArgs {
+    fn from_arg_matches(m: &clap::ArgMatches) -> Result<Self, clap::Error> {
+        SceneArgsCli::from_arg_matches(m).map(Into::into)
+    }
+
+    fn update_from_arg_matches(&mut self, m: &clap::ArgMatches) -> Result<(), clap::Error> {
+        let mut c = SceneArgsCli::from(std::mem::take(self));
+        c.update_from_arg_matches(m)?;
+        *self = c.into();
+        Ok(())
+    }
+}
+
+impl clap::Args for SceneArgs {
+    fn augment_args(cmd: clap::Command) -> clap::Command {
+        SceneArgsCli::augment_args(cmd)
+    }
+
+    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
+        SceneArgsCli::augment_args_for_update(cmd)
+    }
 }
 
 /// A scene loaded for a command, with the command line's edits and who made each.
@@ -57,8 +135,12 @@ pub struct Loaded {
 impl SceneArgs {
     /// Reads the scene (or the paper's of `kind`) and applies `--set`, then `edits` (a
     /// command's own options: key, value, option).
+    ///
+    /// Several `--scene` files merge in order (the later winning key by key). A scene
+    /// whose surface comes from a height map (`surface.topography`) prints its notes (a
+    /// key of the scene overriding the map's value) with the warnings.
     pub fn load(&self, kind: Kind, edits: &[(&str, toml::Value, &str)]) -> Result<Loaded, Error> {
-        let mut scene = Scene::read_or_paper(self.scene.as_deref(), kind)?;
+        let mut scene = Scene::read_merged(&self.scene.0, kind)?;
         let mut blame = Vec::new();
         for s in &self.set {
             let Some((key, value)) = s.split_once('=') else {
@@ -85,6 +167,7 @@ impl SceneArgs {
             scene.set(key, value.clone())?;
             blame.push((key.to_string(), option.to_string()));
         }
+        render::print_warnings(&stiction_model::spec::topography_notes(&scene));
         Ok(Loaded { scene, blame })
     }
 }

@@ -86,6 +86,16 @@ pub struct TopographyCommand {
     /// file's channels); default the first height channel.
     #[arg(long, value_name = "NAME|INDEX")]
     pub channel: Option<String>,
+    /// Short-wavelength cutoff (m): the map is low-pass filtered at this wavelength
+    /// (Gaussian, ISO 16610-61; 50% transmission at it) before the analysis, so the GW
+    /// parameters describe the longer wavelengths; 0 or a cutoff at or below the Nyquist
+    /// wavelength 2 dx: the map as sampled (the default without --contact-radius).
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    pub cutoff: Option<f64>,
+    /// The contact's asperity tip radius R (m), for the default cutoff: 4 sqrt(R sigma_s),
+    /// four contact-spot radii (docs/topography.md section 10); --cutoff wins.
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
+    pub contact_radius: Option<f64>,
     /// Grid spacing (m) for a format that lacks one (text, npy); overrides the file's.
     #[arg(long, allow_hyphen_values = true)]
     pub spacing: Option<f64>,
@@ -152,6 +162,8 @@ impl TopographyCommand {
                 .to_string()
             }),
             channel: self.channel.clone(),
+            cutoff: self.cutoff,
+            contact_radius: self.contact_radius,
         };
         preflight(self.out.as_deref(), FILES, None)?;
         let run = stiction_model::topography::run(&self.file, &request).map_err(option_error)?;
@@ -303,6 +315,70 @@ impl Render for TopographyResult {
                     row.spectral.asperity_density,
                     ss,
                     ns
+                );
+            }
+        }
+        let c = &r.cutoff;
+        let _ = writeln!(
+            s,
+            "\nband: {}",
+            match (c.wavelength, c.applied) {
+                (Some(w), true) => format!(
+                    "wavelengths longer than the cutoff {}{} (Gaussian low-pass)",
+                    si(w, "m", 4),
+                    match (c.contact_radius, c.spot_radius) {
+                        (Some(rr), Some(a)) => format!(
+                            ", 4 x the contact-spot radius {} of R = {}",
+                            si(a, "m", 4),
+                            si(rr, "m", 4)
+                        ),
+                        _ => String::new(),
+                    }
+                ),
+                (Some(w), false) => format!(
+                    "the map as sampled (the cutoff {} is at or below the Nyquist wavelength {})",
+                    si(w, "m", 4),
+                    si(c.nyquist_wavelength, "m", 4)
+                ),
+                _ => format!(
+                    "the map as sampled (no cutoff; Nyquist wavelength {})",
+                    si(c.nyquist_wavelength, "m", 4)
+                ),
+            }
+        );
+        if r.band.len() > 1 {
+            let _ = writeln!(
+                s,
+                "  {:>11} {:>12} {:>12} {:>12} {:>12} {:>12} {:>12}",
+                "cutoff",
+                "sigma_s sp.",
+                "N spectral",
+                "R spectral",
+                "sigma_s sum.",
+                "N summits",
+                "R summits"
+            );
+            for b in &r.band {
+                let (ss, ns, rs) =
+                    b.summits
+                        .map_or(("-".to_string(), "-".to_string(), "-".to_string()), |g| {
+                            (
+                                si(g.sigma_s, "m", 3),
+                                format!("{:.3e}", g.asperity_density),
+                                si(g.radius, "m", 3),
+                            )
+                        });
+                let _ = writeln!(
+                    s,
+                    "  {:>11} {:>12} {:>12.3e} {:>12} {:>12} {:>12} {:>12}{}",
+                    b.cutoff.map_or("as sampled".to_string(), |w| si(w, "m", 3)),
+                    si(b.spectral.sigma_s, "m", 3),
+                    b.spectral.asperity_density,
+                    si(b.spectral.radius, "m", 3),
+                    ss,
+                    ns,
+                    rs,
+                    if b.chosen { "  <- this report" } else { "" }
                 );
             }
         }

@@ -286,6 +286,32 @@ pub const CONTACT_STATES: &[&str] = &["every_cycle", "last_cycle", "none"];
 pub const MODEL_FORMS: &[&str] = &["single", "check"];
 /// The scene kinds, as the optional `kind` key names them.
 pub const KINDS: &[&str] = &["asperity", "surface", "switch"];
+/// The routes of a measured surface's GW parameters (`surface.topography_route`).
+pub const TOPOGRAPHY_ROUTES: &[&str] = &["summits", "spectral"];
+/// The forms removed from a measured surface first (`surface.topography_detrend`).
+pub const TOPOGRAPHY_DETRENDS: &[&str] = &[
+    "mean", "plane", "poly:2", "poly:3", "poly:4", "poly:5", "poly:6",
+];
+/// What a measured surface's undefined points get (`surface.topography_undefined`).
+pub const TOPOGRAPHY_UNDEFINED: &[&str] = &["refuse", "fill"];
+/// Height units of a height-map file that states none (`surface.topography_height_unit`).
+pub const LENGTH_UNITS: &[&str] = &["m", "mm", "um", "nm", "pm", "angstrom"];
+/// The height-map formats (`surface.topography_file_format`; `topography::Format::name`).
+pub const TOPOGRAPHY_FORMATS: &[&str] = &[
+    "text",
+    "xyz",
+    "npy",
+    "gsf",
+    "gwy",
+    "x3p",
+    "nanoscope",
+    "opd",
+    "metropro",
+    "sur",
+    "plu",
+    "vk4",
+    "sdf",
+];
 
 /// Every key of every scene.
 #[rustfmt::skip]
@@ -316,6 +342,15 @@ pub const KEYS: &[Key] = &[
     Key { key: "accuracy", unit: "", domain: Domain::Choice(ACCURACIES), default: Default::Word("accurate"), help: "error targets, see docs/performance.md", scenes: ALL },
     Key { key: "surface.sigma_s", unit: "m", domain: Domain::range(1e-11, 1e-6), default: Default::Required, help: "standard deviation of asperity heights sigma_s (equivalent surface)", scenes: ROUGH },
     Key { key: "surface.asperity_density", unit: "1/m^2", domain: Domain::range(1e9, 1e17), default: Default::Required, help: "asperities per unit area N (1e13 = 10 per um^2)", scenes: ROUGH },
+    Key { key: "surface.topography", unit: "", domain: Domain::Text, default: Default::Absent, help: "a measured height-map file (any format `stiction topography` reads; a relative path is relative to the scene file's folder) whose GW parameters set surface.sigma_s, surface.asperity_density and, unless the scene gives it, contact.radius; a key the scene gives wins, with a note naming both values (docs/topography.md section 11)", scenes: ROUGH },
+    Key { key: "surface.topography_route", unit: "", domain: Domain::Choice(TOPOGRAPHY_ROUTES), default: Default::Word("summits"), help: "which analysis of the map gives the parameters: summits (the grid's local maxima) or spectral (McCool's formulas on the moments); a map without summits gives the spectral route's", scenes: ROUGH },
+    Key { key: "surface.topography_cutoff", unit: "m", domain: Domain::range(0.0, 1.0), default: Default::Absent, help: "short-wavelength cutoff: the map is low-pass filtered at this wavelength (Gaussian, ISO 16610-61) before the analysis, at most half the scan (absent: 4 sqrt(R sigma_s), four contact-spot radii, when the scene gives contact.radius, else 0; 0: the map as sampled)", scenes: ROUGH },
+    Key { key: "surface.topography_detrend", unit: "", domain: Domain::Choice(TOPOGRAPHY_DETRENDS), default: Default::Word("plane"), help: "the form removed from the map first: its mean, its mean plane, or a polynomial of degree 2 to 6", scenes: ROUGH },
+    Key { key: "surface.topography_spacing", unit: "m", domain: Domain::range(1e-12, 1.0), default: Default::Absent, help: "grid spacing of a map file that gives none (text, npy); overrides the file's (absent: the file's)", scenes: ROUGH },
+    Key { key: "surface.topography_height_unit", unit: "", domain: Domain::Choice(LENGTH_UNITS), default: Default::Absent, help: "unit of the heights of a map file that states none (absent: the file's)", scenes: ROUGH },
+    Key { key: "surface.topography_undefined", unit: "", domain: Domain::Choice(TOPOGRAPHY_UNDEFINED), default: Default::Word("refuse"), help: "the map's undefined points (instrument markers, NaN): refuse the map, or fill them by harmonic interpolation", scenes: ROUGH },
+    Key { key: "surface.topography_channel", unit: "", domain: Domain::Text, default: Default::Absent, help: "the channel of a file with several, by name or 0-based index (absent: the first height channel)", scenes: ROUGH },
+    Key { key: "surface.topography_file_format", unit: "", domain: Domain::Choice(TOPOGRAPHY_FORMATS), default: Default::Absent, help: "the map file's format (absent: from its first bytes, else its extension)", scenes: ROUGH },
     Key { key: "d_start", unit: "m", domain: Domain::range(-2e-5, 2e-5), default: Default::Absent, help: "smallest separation of the loading curve (default: unload_from, else 0); also within 20 sigma_s of the mean plane", scenes: SURFACE },
     Key { key: "unload_from", unit: "m", domain: Domain::range(-2e-5, 2e-5), default: Default::Absent, help: "load to this separation and unload from it (absent: loading only); also within 20 sigma_s of the mean plane", scenes: SURFACE },
     Key { key: "cycles", unit: "-", domain: Domain::Count { lo: 1, hi: 1000 }, default: Default::Count(10), help: "impact cycles (the cap with until_accommodated)", scenes: SWITCH },

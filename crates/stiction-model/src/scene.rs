@@ -3,11 +3,15 @@
 //! A [`Scene`] is a tree of keys and values with the name of its source. It is checked
 //! once, when a spec is made from it ([`crate::spec`]); until then it can be edited key by
 //! key ([`Scene::set`], the `--set section.key=value` of every command, a design point's
-//! varied field), and every edit is checked like a value of the file.
+//! varied field), and every edit is checked like a value of the file. Scenes merge
+//! ([`Scene::merge`]: `--scene A --scene B`, the later winning key by key), and each key
+//! remembers the file that gave it, for messages and for paths relative to that file.
 
 use crate::error::SceneError;
 use crate::keys::{self, Kind};
+use std::collections::BTreeSet;
 use std::io::Read;
+use std::path::{Path, PathBuf};
 
 /// Scene files are at most this large (1 MiB): a scene is a few dozen lines.
 pub const MAX_SCENE_BYTES: u64 = 1 << 20;
@@ -29,6 +33,62 @@ pub struct Scene {
     text: Option<String>,
     tree: toml::Table,
     is_paper: bool,
+    /// The folder of the file read (relative paths in the scene are relative to it).
+    dir: Option<PathBuf>,
+    /// The scenes merged into this one, the first the base (empty unless merged).
+    layers: Vec<Layer>,
+}
+
+/// One scene of a merge: its name, text, folder and the keys it gave.
+#[derive(Debug, Clone, PartialEq)]
+struct Layer {
+    file: String,
+    text: Option<String>,
+    dir: Option<PathBuf>,
+    keys: BTreeSet<String>,
+}
+
+impl Layer {
+    fn of(s: &Scene) -> Self {
+        let mut keys = BTreeSet::new();
+        leaf_keys(&s.tree, "", &mut keys);
+        Layer {
+            file: s.file.clone(),
+            text: s.text.clone(),
+            dir: s.dir.clone(),
+            keys,
+        }
+    }
+}
+
+/// Every leaf key (`section.key`) of a tree; a law table's parameters are leaves too.
+fn leaf_keys(t: &toml::Table, prefix: &str, out: &mut BTreeSet<String>) {
+    for (k, v) in t {
+        let key = if prefix.is_empty() {
+            k.clone()
+        } else {
+            format!("{prefix}.{k}")
+        };
+        match v {
+            toml::Value::Table(sub) => leaf_keys(sub, &key, out),
+            _ => {
+                out.insert(key);
+            }
+        }
+    }
+}
+
+/// `over` merged into `base` key by key: a table into a table recursively, any other value
+/// replacing what `base` had.
+fn merge_tables(base: &mut toml::Table, over: &toml::Table) {
+    for (k, v) in over {
+        match (base.get_mut(k), v) {
+            (Some(toml::Value::Table(b)), toml::Value::Table(o)) => merge_tables(b, o),
+            _ => {
+                base.insert(k.clone(), v.clone());
+            }
+        }
+    }
 }
 
 impl Scene {
@@ -58,6 +118,8 @@ impl Scene {
             text: Some(text.to_string()),
             tree,
             is_paper: false,
+            dir: None,
+            layers: Vec::new(),
         })
     }
 
@@ -88,6 +150,8 @@ impl Scene {
             text: None,
             tree,
             is_paper: false,
+            dir: None,
+            layers: Vec::new(),
         }
     }
 
@@ -108,6 +172,8 @@ impl Scene {
             text: None,
             tree,
             is_paper: false,
+            dir: None,
+            layers: Vec::new(),
         })
     }
 
@@ -149,11 +215,72 @@ impl Scene {
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("json"))
             || text.trim_start().starts_with('{');
-        if json {
+        let mut scene = if json {
             Self::from_json_str(&file, &text)
         } else {
             Self::from_toml_str(&file, &text)
+        }?;
+        scene.dir = Some(path.parent().map_or_else(PathBuf::new, Path::to_path_buf));
+        Ok(scene)
+    }
+
+    /// Reads the scene files `paths` and merges them in order ([`Self::merge`]), or gives
+    /// the embedded paper scene of `kind` when there are none.
+    pub fn read_merged(paths: &[PathBuf], kind: Kind) -> Result<Self, SceneError> {
+        let Some((first, rest)) = paths.split_first() else {
+            return Ok(Self::paper(kind));
+        };
+        let mut scene = Self::read(first)?;
+        for p in rest {
+            scene.merge(&Self::read(p)?);
         }
+        Ok(scene)
+    }
+
+    /// Merges `other` into this scene key by key, `other` winning: each of its values
+    /// replaces this scene's at the same key (sections and law tables merge key by key, a
+    /// list is one value). Keys keep the file that gave them ([`Self::file_of`],
+    /// [`Self::dir_of`], [`Self::line_of`]); the merged scene is named `a.toml + b.toml`.
+    pub fn merge(&mut self, other: &Scene) {
+        if self.layers.is_empty() {
+            self.layers.push(Layer::of(self));
+        }
+        if other.layers.is_empty() {
+            self.layers.push(Layer::of(other));
+        } else {
+            self.layers.extend(other.layers.iter().cloned());
+        }
+        merge_tables(&mut self.tree, &other.tree);
+        self.file = format!("{} + {}", self.file, other.file);
+        self.text = None;
+        self.is_paper = false;
+    }
+
+    /// The folder of the scene file read, if it was read from a file (relative paths in
+    /// it are relative to this folder).
+    pub fn dir(&self) -> Option<&Path> {
+        self.dir.as_deref()
+    }
+
+    /// The layer (of a merged scene) that gave `key`, the last one to give it.
+    fn layer_of(&self, key: &str) -> Option<&Layer> {
+        self.layers.iter().rev().find(|l| l.keys.contains(key))
+    }
+
+    /// The file that gave `key`: in a merged scene the last file to give it (the scene's
+    /// name for a key set by an edit or not given at all), else the scene's name.
+    pub fn file_of(&self, key: &str) -> &str {
+        self.layer_of(key).map_or(&self.file, |l| &l.file)
+    }
+
+    /// The folder a relative path at `key` is relative to: that of the file that gave the
+    /// key; None for a scene not read from a file and for a key set by an edit (the
+    /// working directory).
+    pub fn dir_of(&self, key: &str) -> Option<&Path> {
+        if self.layers.is_empty() {
+            return self.dir.as_deref();
+        }
+        self.layer_of(key).and_then(|l| l.dir.as_deref())
     }
 
     /// Reads `path`, or the embedded paper scene of `kind` when `path` is None.
@@ -191,8 +318,12 @@ impl Scene {
             .unwrap_or_else(|| self.file.clone())
     }
 
-    /// The line of the source text where `key` (`section.key`) is written, if known.
+    /// The line of the source text where `key` (`section.key`) is written, if known (in a
+    /// merged scene, in the file that gave it: [`Self::file_of`]).
     pub fn line_of(&self, key: &str) -> Option<usize> {
+        if !self.layers.is_empty() {
+            return locate(self.layer_of(key)?.text.as_deref()?, key);
+        }
         locate(self.text.as_deref()?, key)
     }
 
@@ -232,6 +363,7 @@ impl Scene {
     /// checked when a spec is made, like a value of the file. An edited scene is no longer
     /// the paper's.
     pub fn set(&mut self, key: &str, value: toml::Value) -> Result<(), SceneError> {
+        self.remember_files();
         let parts: Vec<&str> = key.split('.').collect();
         if parts.iter().any(|p| p.is_empty()) {
             return Err(SceneError::Parse {
@@ -258,8 +390,7 @@ impl Scene {
             };
         }
         node.insert(parts[parts.len() - 1].to_string(), value);
-        self.is_paper = false;
-        self.text = None;
+        self.edited(key);
         Ok(())
     }
 
@@ -292,6 +423,7 @@ impl Scene {
 
     /// Removes `key` (`section.key`) if present.
     pub fn remove(&mut self, key: &str) {
+        self.remember_files();
         let parts: Vec<&str> = key.split('.').collect();
         let mut node = &mut self.tree;
         for part in &parts[..parts.len() - 1] {
@@ -301,8 +433,28 @@ impl Scene {
             }
         }
         node.remove(parts[parts.len() - 1]);
+        self.edited(key);
+    }
+
+    /// Before the first edit of a scene read from a file: which keys the file gave, so that
+    /// an edited key is no longer the file's (a relative path set by an edit is relative
+    /// to the working directory, not to the file's folder).
+    fn remember_files(&mut self) {
+        if self.layers.is_empty() && self.dir.is_some() {
+            self.layers.push(Layer::of(self));
+        }
+    }
+
+    /// After an edit of `key`: no longer the paper's, and the key (or section) no longer
+    /// any file's: no line number for it (a scene read from a file keeps those of the keys
+    /// the file still gives; one built from text alone keeps none).
+    fn edited(&mut self, key: &str) {
         self.is_paper = false;
         self.text = None;
+        let section = format!("{key}.");
+        for l in &mut self.layers {
+            l.keys.retain(|k| k != key && !k.starts_with(&section));
+        }
     }
 
     /// The value of `key` (`section.key`), if present.

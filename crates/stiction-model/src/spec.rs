@@ -250,6 +250,10 @@ pub struct Common {
     pub points: usize,
     /// Every key with the value it resolved to (defaults filled), for echoes.
     pub resolved: toml::Table,
+    /// Notes of the validation for the front ends to show with a run's warnings (a key
+    /// the scene gives overriding the value its `surface.topography` gives:
+    /// [`crate::topography::TOPOGRAPHY_VALUE_OVERRIDDEN`]).
+    pub notes: Vec<crate::guards::Warning>,
 }
 
 impl Common {
@@ -413,6 +417,7 @@ impl SurfaceSpec {
     /// Validates a surface scene.
     pub fn new(scene: &Scene, registry: &LawRegistry) -> Result<Self, ModelError> {
         let mut r = Reader::new(scene, Kind::Surface);
+        r.topography()?;
         let contact = r.contact(registry)?;
         let roughness = r.roughness()?;
         let lim = 20.0 * roughness.sigma_s;
@@ -451,6 +456,7 @@ impl SwitchSpec {
     /// Validates a switch scene.
     pub fn new(scene: &Scene, registry: &LawRegistry) -> Result<Self, ModelError> {
         let mut r = Reader::new(scene, Kind::Switch);
+        r.topography()?;
         let contact = r.contact(registry)?;
         let roughness = r.roughness()?;
         let switch = r.switch(contact.youngs_modulus)?;
@@ -512,6 +518,47 @@ struct Reader<'a> {
     kind: Kind,
     used: BTreeSet<String>,
     resolved: toml::Table,
+    /// Values of keys the scene leaves out, derived from its `surface.topography`.
+    derived: Vec<(&'static str, f64)>,
+    /// Notes for the front ends (`Common::notes`).
+    notes: Vec<crate::guards::Warning>,
+}
+
+/// The keys of a scene's `surface.topography` analysis, besides the file itself.
+const TOPOGRAPHY_OPTIONS: [&str; 8] = [
+    "surface.topography_route",
+    "surface.topography_cutoff",
+    "surface.topography_detrend",
+    "surface.topography_spacing",
+    "surface.topography_height_unit",
+    "surface.topography_undefined",
+    "surface.topography_channel",
+    "surface.topography_file_format",
+];
+
+/// The keys a scene's `surface.topography` sets, unless the scene gives them.
+const TOPOGRAPHY_SETS: [&str; 3] = [
+    "surface.sigma_s",
+    "surface.asperity_density",
+    "contact.radius",
+];
+
+/// The notes of a surface or switch scene's `surface.topography` (a key the scene gives
+/// overriding the map's value, [`crate::topography::TOPOGRAPHY_VALUE_OVERRIDDEN`]), as
+/// the spec's [`Common::notes`] holds them: for a front end to show before the spec is
+/// made. Empty for other scenes and for a scene whose topography is refused (the spec
+/// says why).
+pub fn topography_notes(scene: &Scene) -> Vec<crate::guards::Warning> {
+    match scene.kind() {
+        Ok(kind @ (Kind::Surface | Kind::Switch)) => {
+            let mut r = Reader::new(scene, kind);
+            match r.topography() {
+                Ok(()) => r.notes,
+                Err(_) => Vec::new(),
+            }
+        }
+        _ => Vec::new(),
+    }
 }
 
 /// The deepest maximum interference of an asperity, in tip radii: `delta_max` lies in
@@ -577,11 +624,20 @@ impl<'a> Reader<'a> {
             kind,
             used: BTreeSet::new(),
             resolved: toml::Table::new(),
+            derived: Vec::new(),
+            notes: Vec::new(),
         }
     }
 
     fn file(&self) -> String {
         self.scene.file().to_string()
+    }
+
+    /// The file that gave `key` (of a merged scene: the last to give it).
+    fn file_of(&self, key: &str) -> String {
+        self.scene
+            .file_of(key.split('[').next().unwrap_or(key))
+            .to_string()
     }
 
     fn line(&self, key: &str) -> String {
@@ -592,7 +648,7 @@ impl<'a> Reader<'a> {
 
     fn fail(&self, key: &str, value: impl Into<String>, allowed: impl Into<String>) -> SceneError {
         SceneError::Field {
-            file: self.file(),
+            file: self.file_of(key),
             key: key.to_string(),
             value: value.into(),
             line: self.line(key),
@@ -604,7 +660,7 @@ impl<'a> Reader<'a> {
         // a required key misspelled: the key as written is what to fix
         if let Some(typo) = self.misspelling_of(key) {
             return SceneError::Unknown {
-                file: self.file(),
+                file: self.file_of(&typo),
                 line: self.line(&typo),
                 kind: self.kind.to_string(),
                 hint: format!(": did you mean `{key}`?"),
@@ -701,9 +757,11 @@ impl<'a> Reader<'a> {
                     ))
                 }
             },
-            None => match k.default {
-                Default::Number(x) => x,
-                Default::Key(other) => match self.scene.get(other).and_then(as_number) {
+            // left out: the value its `surface.topography` gives, else the default
+            None => match (self.derived.iter().find(|(d, _)| *d == key), k.default) {
+                (Some(&(_, x)), _) => x,
+                (None, Default::Number(x)) => x,
+                (None, Default::Key(other)) => match self.scene.get(other).and_then(as_number) {
                     Some(x) => x,
                     None => return Ok(None),
                 },
@@ -875,6 +933,179 @@ impl<'a> Reader<'a> {
             accuracy,
             points,
             resolved: toml::Table::new(),
+            notes: self.notes.clone(),
+        })
+    }
+
+    /// `surface.topography`: the height map read and analysed with the scene's options
+    /// (`surface.topography_*`), its GW parameters set as the values of the keys the scene
+    /// leaves out ([`TOPOGRAPHY_SETS`]) and noted where the scene gives another; the file,
+    /// the route taken and the cutoff recorded for the echo. Options without the file are
+    /// refused. Errors name the key and the scene file that gave it.
+    fn topography(&mut self) -> Result<(), SceneError> {
+        let key = "surface.topography";
+        let Some(v) = self.take(key) else {
+            for option in TOPOGRAPHY_OPTIONS {
+                if let Some(v) = self.scene.get(option).cloned() {
+                    // a value outside the option's domain is refused as such first
+                    self.topography_option(option)?;
+                    return Err(self.fail(
+                        option,
+                        show(&v),
+                        "given with surface.topography, the height-map file it is an option of (the scene gives none)",
+                    ));
+                }
+            }
+            return Ok(());
+        };
+        let written = match &v {
+            toml::Value::String(p) if !p.trim().is_empty() => p.clone(),
+            _ => {
+                return Err(self.fail(
+                    key,
+                    show(&v),
+                    "the path of a height-map file (text; a relative path is relative to the scene file's folder)",
+                ))
+            }
+        };
+        let path = match self.scene.dir_of(key) {
+            Some(dir) if std::path::Path::new(&written).is_relative() => dir.join(&written),
+            _ => std::path::PathBuf::from(&written),
+        };
+        let mut request = crate::topography::TopographyRequest::default();
+        let mut options = std::collections::BTreeMap::new();
+        for option in TOPOGRAPHY_OPTIONS {
+            if let Some(v) = self.topography_option(option)? {
+                options.insert(option, v);
+            }
+        }
+        let word = |o: &str| match options.get(o) {
+            Some(toml::Value::String(w)) => Some(w.clone()),
+            _ => None,
+        };
+        let number = |o: &str| match options.get(o) {
+            Some(toml::Value::Float(x)) => Some(*x),
+            _ => None,
+        };
+        request.route = word("surface.topography_route");
+        request.detrend = word("surface.topography_detrend");
+        request.undefined = word("surface.topography_undefined");
+        request.height_unit = word("surface.topography_height_unit");
+        request.file_format = word("surface.topography_file_format");
+        request.channel = word("surface.topography_channel");
+        request.spacing = number("surface.topography_spacing");
+        request.cutoff = number("surface.topography_cutoff");
+        let given_radius = self.scene.get("contact.radius").and_then(as_number);
+        if request.cutoff.is_none() {
+            request.contact_radius = given_radius.filter(|r| r.is_finite() && *r > 0.0);
+        }
+        let surface = crate::topography::scene_surface(&path, &request).map_err(|e| match e {
+            ModelError::Option { name, message }
+                if name == "cutoff" || name == "contact_radius" =>
+            {
+                let option = "surface.topography_cutoff";
+                let value = match request.cutoff {
+                    Some(c) => num(c),
+                    None => format!(
+                        "absent, 4 sqrt(R sigma_s) with contact.radius = R = {}",
+                        given_radius.map_or("?".into(), num)
+                    ),
+                };
+                self.fail(option, value, crate::topography::as_scene_keys(&message))
+            }
+            e => self.fail(
+                key,
+                format!("\"{written}\""),
+                format!(
+                    "a height map that can be read and analysed: {}",
+                    crate::topography::as_scene_keys(&e.to_string())
+                ),
+            ),
+        })?;
+        self.record(key, toml::Value::String(path.display().to_string()));
+        let route = match surface.route {
+            crate::topography::Route::Spectral => "spectral",
+            crate::topography::Route::Summits => "summits",
+        };
+        self.record(
+            "surface.topography_route",
+            toml::Value::String(route.into()),
+        );
+        // the cutoff the map was analysed at (0: as sampled), so the echo runs as it ran
+        self.record(
+            "surface.topography_cutoff",
+            toml::Value::Float(surface.cutoff.wavelength.unwrap_or(0.0)),
+        );
+        let file = path.display().to_string();
+        let band = match (surface.cutoff.wavelength, surface.cutoff.applied) {
+            (Some(w), true) => format!("wavelengths above the cutoff {w:.4e} m"),
+            _ => "the map as sampled".to_string(),
+        };
+        for (k, v) in [
+            (TOPOGRAPHY_SETS[0], surface.gw.sigma_s),
+            (TOPOGRAPHY_SETS[1], surface.gw.asperity_density),
+            (TOPOGRAPHY_SETS[2], surface.gw.radius),
+        ] {
+            let unit = keys::key(k).map_or("", |f| f.unit);
+            match self.scene.get(k).and_then(as_number) {
+                Some(given) => {
+                    if (given - v).abs() > 1e-9 * v.abs() {
+                        self.notes.push(crate::guards::Warning::note(
+                            crate::topography::TOPOGRAPHY_VALUE_OVERRIDDEN,
+                            format!(
+                                "{k} = {} {unit} given by {} wins over {v:.4e} {unit} from {file} ({route} route, {band})",
+                                num(given),
+                                self.file_of(k),
+                            ),
+                        ));
+                    }
+                }
+                None if self.scene.get(k).is_some() => {} // not a number: its own error
+                None => {
+                    let domain = self.registry_key(k).domain;
+                    if !domain.contains(v) {
+                        return Err(self.fail(
+                            key,
+                            format!("\"{written}\""),
+                            format!(
+                                "a map whose {k} lies in the key's domain ({}): {file} gives {v:.4e} {unit} ({route} route, {band}); give {k} in the scene, or choose another band (surface.topography_cutoff)",
+                                domain.describe(),
+                            ),
+                        ));
+                    }
+                    self.derived.push((k, v));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// One option of `surface.topography`, checked against its domain and recorded (the
+    /// choices' defaults too); None when absent without a default. The channel is a name
+    /// or a 0-based index (an integer), given back as text.
+    fn topography_option(&mut self, key: &str) -> Result<Option<toml::Value>, SceneError> {
+        let k = self.registry_key(key);
+        Ok(match k.domain {
+            Domain::Choice(_) => self.word(key)?.map(toml::Value::String),
+            Domain::Range { .. } => self.opt_number(key)?.map(toml::Value::Float),
+            _ => match self.take(key) {
+                None => None,
+                Some(toml::Value::String(c)) if !c.trim().is_empty() => {
+                    self.record(key, toml::Value::String(c.clone()));
+                    Some(toml::Value::String(c))
+                }
+                Some(toml::Value::Integer(i)) if i >= 0 => {
+                    self.record(key, toml::Value::Integer(i));
+                    Some(toml::Value::String(i.to_string()))
+                }
+                Some(v) => {
+                    return Err(self.fail(
+                        key,
+                        show(&v),
+                        "a channel's name (text) or its 0-based index (an integer >= 0)",
+                    ))
+                }
+            },
         })
     }
 
@@ -1464,7 +1695,7 @@ impl<'a> Reader<'a> {
                 }
             };
             return Err(SceneError::Unknown {
-                file: self.file(),
+                file: self.file_of(&key),
                 key: key.clone(),
                 line: self.line(&key),
                 kind: self.kind.to_string(),

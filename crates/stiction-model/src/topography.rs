@@ -26,7 +26,13 @@
 use crate::error::ModelError;
 use crate::guards::{code, Warning as ModelWarning};
 pub use ::topography::*;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+/// The code of the note a scene gets when it gives a key its `surface.topography` would
+/// set (`surface.sigma_s`, `surface.asperity_density`, `contact.radius`) with another
+/// value: the scene's value wins, the note names both.
+pub const TOPOGRAPHY_VALUE_OVERRIDDEN: &str = "topography_value_overridden";
 
 /// `fragment` (a [`scene_fragment`]) with every value outside the domain of its scene key
 /// commented out, and a warning for each: a fragment is never written with a value the
@@ -103,8 +109,9 @@ pub fn analyze_map(
 
 /// A topography question with its options in words, as every front end takes them (the
 /// command line's `--file-format`, `--spacing`, `--height-unit`, `--xy-unit`, `--detrend`,
-/// `--route`, `--undefined`, `--channel`); None takes the default (the format from the
-/// file, plane, summits, undefined points refused, the first height channel).
+/// `--route`, `--undefined`, `--channel`, `--cutoff`, `--contact-radius`); None takes the
+/// default (the format from the file, plane, summits, undefined points refused, the first
+/// height channel, no cutoff unless a contact radius gives one).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct TopographyRequest {
     /// One of [`Format::names`]: text, xyz, npy, gsf, gwy, x3p, nanoscope, opd, metropro,
@@ -127,6 +134,12 @@ pub struct TopographyRequest {
     /// The channel to read, by name or 0-based index (the report's `source.channels` lists
     /// them); default the first height channel.
     pub channel: Option<String>,
+    /// The short-wavelength cutoff (m): the map low-pass filtered at it before the analysis
+    /// (0: none, the map as sampled, also with a contact radius).
+    pub cutoff: Option<f64>,
+    /// The contact (asperity tip) radius R (m): without a cutoff, the cutoff is
+    /// [`SPOT_CUTOFF_FACTOR`] sqrt(R sigma_s), four contact-spot radii.
+    pub contact_radius: Option<f64>,
 }
 
 /// What a topography question gives: the report (the command's JSON), the `[surface]`
@@ -166,11 +179,10 @@ pub fn detrend_of(word: &str) -> Result<Detrend, ModelError> {
     }
 }
 
-/// Reads and analyses the height map at `path` as `request` asks, and writes its scene
-/// fragment: what `stiction topography FILE` computes. Option errors name the option
-/// (`file_format`, `spacing`, `height_unit`, `xy_unit`, `detrend`, `route`, `undefined`,
-/// `channel`).
-pub fn run(path: &Path, request: &TopographyRequest) -> Result<TopographyRun, ModelError> {
+/// What a request asks of the reader and the analysis, checked (errors name the option).
+fn prepare(
+    request: &TopographyRequest,
+) -> Result<(ReadOptions, AnalysisOptions, Route), ModelError> {
     let bad = |name: &str, message: String| ModelError::Option {
         name: name.into(),
         message,
@@ -190,14 +202,19 @@ pub fn run(path: &Path, request: &TopographyRequest) -> Result<TopographyRun, Mo
                 })?,
         ),
     };
-    if let Some(s) = request.spacing {
-        if !(s.is_finite() && s > 0.0) {
-            return Err(bad(
-                "spacing",
-                format!("{s:e}: must be a finite length > 0 (m)"),
-            ));
-        }
-    }
+    let length = |name: &str, v: Option<f64>, zero: bool| match v {
+        Some(s) if !(s.is_finite() && (s > 0.0 || (zero && s == 0.0))) => Err(bad(
+            name,
+            format!(
+                "{s:e}: must be a finite length {} (m)",
+                if zero { ">= 0" } else { "> 0" }
+            ),
+        )),
+        v => Ok(v),
+    };
+    length("spacing", request.spacing, false)?;
+    let cutoff = length("cutoff", request.cutoff, true)?;
+    let contact_radius = length("contact_radius", request.contact_radius, false)?;
     let unit = |name: &str, t: &Option<String>| {
         t.as_deref()
             .map(|t| LengthUnit::parse(t).map_err(|e| bad(name, e.to_string())))
@@ -236,24 +253,66 @@ pub fn run(path: &Path, request: &TopographyRequest) -> Result<TopographyRun, Mo
         Some("spectral") => Route::Spectral,
         Some(w) => return Err(bad("route", format!("`{w}`: must be summits or spectral"))),
     };
+    let cutoff = match (cutoff, contact_radius) {
+        (Some(0.0), _) => Cutoff::None,
+        (Some(c), _) => Cutoff::Wavelength(c),
+        (None, Some(r)) => Cutoff::ContactRadius(r),
+        (None, None) => Cutoff::None,
+    };
     let options = AnalysisOptions {
         detrend,
+        cutoff,
         ..AnalysisOptions::default()
     };
-    let m = read_path(path, &read)?;
-    let report = analyze_measurement(&m, &options).map_err(|e| {
-        ModelError::from(topography::TopographyError::InFile {
+    Ok((read, options, route))
+}
+
+/// The analysis of the measurement read from `path`; a cutoff the map cannot take is an
+/// error of the option that set it (`cutoff`, or `contact_radius` for one derived from it).
+fn analyze_read(
+    path: &Path,
+    m: &Measurement,
+    options: &AnalysisOptions,
+) -> Result<TopographyReport, ModelError> {
+    analyze_measurement(m, options).map_err(|e| match e {
+        TopographyError::Parameter {
+            name: "cutoff" | "contact radius",
+            value,
+            message,
+        } => ModelError::Option {
+            name: match options.cutoff {
+                Cutoff::ContactRadius(_) => "contact_radius",
+                _ => "cutoff",
+            }
+            .into(),
+            message: format!("{}: cutoff {value}: {message}", path.display()),
+        },
+        e => ModelError::from(TopographyError::InFile {
             path: path.to_path_buf(),
             source: Box::new(e),
-        })
-    })?;
-    // a map without summits on its grid gives the spectral route's numbers
-    let route = if route == Route::Summits && report.summits.is_none() {
+        }),
+    })
+}
+
+/// The route a report's numbers are taken from: `route`, except that a map without
+/// summits on its grid gives the spectral route's.
+fn route_taken(report: &TopographyReport, route: Route) -> Route {
+    if route == Route::Summits && report.summits.is_none() {
         Route::Spectral
     } else {
         route
-    };
-    let fragment = scene_fragment(&report, route)?;
+    }
+}
+
+/// Reads and analyses the height map at `path` as `request` asks, and writes its scene
+/// fragment: what `stiction topography FILE` computes. Option errors name the option
+/// (`file_format`, `spacing`, `height_unit`, `xy_unit`, `detrend`, `route`, `undefined`,
+/// `channel`, `cutoff`, `contact_radius`).
+pub fn run(path: &Path, request: &TopographyRequest) -> Result<TopographyRun, ModelError> {
+    let (read, options, route) = prepare(request)?;
+    let m = read_path(path, &read)?;
+    let report = analyze_read(path, &m, &options)?;
+    let fragment = scene_fragment(&report, route_taken(&report, route))?;
     let (fragment, warnings) = fragment_within_domains(&fragment);
     Ok(TopographyRun {
         report,
@@ -261,6 +320,111 @@ pub fn run(path: &Path, request: &TopographyRequest) -> Result<TopographyRun, Mo
         warnings,
         map: m.map,
     })
+}
+
+/// The GW parameters a scene takes from its `surface.topography` file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneSurface {
+    /// The file, as the scene resolved it.
+    pub path: PathBuf,
+    /// The route the numbers come from (summits, or spectral for a map without summits).
+    pub route: Route,
+    /// sigma_s, asperity_density, radius (and the summits' offset), SI.
+    pub gw: GwParameters,
+    /// The band: the cutoff chosen and whether it filtered the map.
+    pub cutoff: CutoffSummary,
+}
+
+/// What a cached analysis is of: the file (its size and time of change) and the request.
+#[derive(Debug, Clone, PartialEq)]
+struct SurfaceKey {
+    path: PathBuf,
+    len: u64,
+    modified: Option<std::time::SystemTime>,
+    request: TopographyRequest,
+}
+
+/// The most analyses [`scene_surface`] keeps.
+const SURFACE_CACHE: usize = 32;
+
+static SURFACES: Mutex<Vec<(SurfaceKey, Arc<SceneSurface>)>> = Mutex::new(Vec::new());
+
+/// The GW parameters of the height map at `path` analysed as `request` asks, for a scene
+/// (`surface.topography`): the route's sigma_s, density and radius and the band. The
+/// analysis is kept for the process (up to 32 files and requests, keyed by the file's
+/// size and time of change as well as its path), so that a design sweep, whose every
+/// point validates the scene again, reads and analyses the file once per band.
+pub fn scene_surface(
+    path: &Path,
+    request: &TopographyRequest,
+) -> Result<Arc<SceneSurface>, ModelError> {
+    let meta = std::fs::metadata(path).ok();
+    let key = SurfaceKey {
+        // the file itself, whatever the working directory of a relative path
+        path: std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf()),
+        len: meta.as_ref().map_or(0, std::fs::Metadata::len),
+        modified: meta.as_ref().and_then(|m| m.modified().ok()),
+        request: request.clone(),
+    };
+    let cached = |k: &SurfaceKey| {
+        SURFACES
+            .lock()
+            .ok()?
+            .iter()
+            .find(|(x, _)| x == k)
+            .map(|(_, s)| Arc::clone(s))
+    };
+    if let Some(s) = cached(&key) {
+        return Ok(s);
+    }
+    let (read, options, route) = prepare(request)?;
+    // the scene needs the parameters only: no tables, no plot data
+    let options = AnalysisOptions {
+        coarsen: Vec::new(),
+        scan_divisors: Vec::new(),
+        band: Vec::new(),
+        psd_bins: 0,
+        plot_side: 8,
+        histogram_bins: 4,
+        ..options
+    };
+    let m = read_path(path, &read)?;
+    let report = analyze_read(path, &m, &options)?;
+    let route = route_taken(&report, route);
+    let gw = match (route, &report.summits) {
+        (Route::Summits, Some(s)) => s.gw,
+        _ => report.spectral.gw,
+    };
+    let surface = Arc::new(SceneSurface {
+        path: path.to_path_buf(),
+        route,
+        gw,
+        cutoff: report.cutoff.clone(),
+    });
+    if let Ok(mut c) = SURFACES.lock() {
+        if c.len() >= SURFACE_CACHE {
+            c.remove(0);
+        }
+        c.push((key, Arc::clone(&surface)));
+    }
+    Ok(surface)
+}
+
+/// A reader's or the analysis' message with the command line's options named as the
+/// scene keys that set them (`--undefined fill` -> `surface.topography_undefined =
+/// "fill"`), for errors of a scene's `surface.topography`.
+pub fn as_scene_keys(message: &str) -> String {
+    message
+        .replace(
+            "--undefined fill",
+            "surface.topography_undefined = \"fill\"",
+        )
+        .replace("--undefined", "surface.topography_undefined")
+        .replace("--channel", "surface.topography_channel")
+        .replace("--spacing", "surface.topography_spacing")
+        .replace("--height-unit", "surface.topography_height_unit")
+        .replace("--file-format", "surface.topography_file_format")
+        .replace("--cutoff", "surface.topography_cutoff")
 }
 
 #[cfg(test)]

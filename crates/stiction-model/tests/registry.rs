@@ -9,9 +9,55 @@ use stiction_model::scene::Scene;
 use stiction_model::spec::{AsperitySpec, Spec, SurfaceSpec, SwitchSpec};
 use stiction_model::ModelError;
 
-/// A valid scene of `kind` on which `key` applies (the drive or counter it needs).
+/// A rough 64 x 64 height map at 25 nm (1.6 um scan), as a text file: the
+/// `surface.topography` of the scenes whose topography options are probed.
+fn height_map() -> &'static str {
+    static PATH: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    PATH.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("stiction-registry-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("map.txt");
+        let rows: Vec<String> = (0..64)
+            .map(|j| {
+                (0..64)
+                    .map(|i| {
+                        let (x, y) = (i as f64, j as f64);
+                        let noise = ((i * 7919 + j * 104_729) % 97) as f64 / 97.0 - 0.5;
+                        format!(
+                            "{:.6}",
+                            3.0 * (0.37 * x + 1.1 * y).sin()
+                                + 2.0 * (0.23 * x - 0.71 * y).cos()
+                                + noise
+                        )
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            })
+            .collect();
+        std::fs::write(
+            &p,
+            format!(
+                "# spacing = 25 nm\n# height_unit = nm\n{}\n",
+                rows.join("\n")
+            ),
+        )
+        .unwrap();
+        p.display().to_string()
+    })
+}
+
+/// A valid scene of `kind` on which `key` applies (the drive or counter it needs; for the
+/// options of `surface.topography`, the file, analysed as sampled unless the key is the
+/// cutoff).
 fn base(kind: Kind, key: &str) -> Scene {
     let mut s = Scene::paper(kind);
+    if key.starts_with("surface.topography") {
+        s.set_text("surface.topography", &format!("{:?}", height_map()))
+            .unwrap();
+        if key != "surface.topography" && key != "surface.topography_cutoff" {
+            s.set_number("surface.topography_cutoff", 0.0).unwrap();
+        }
+    }
     if key.starts_with("contact.counter_") {
         s.set_text("contact.counter", "material").unwrap();
         s.set_number("contact.counter_youngs_modulus", 168e9)
@@ -100,10 +146,13 @@ fn inside(d: Domain) -> [f64; 2] {
 
 /// Keys whose inside end another rule of the same scene refuses (said by the rule's own
 /// message): the lower end of `points` where a kind needs curves; a dimple height at or
-/// above the scene's gap d0 (2 um: the domain's upper end, 1 mm, is d0's own end).
+/// above the scene's gap d0 (2 um: the domain's upper end, 1 mm, is d0's own end); a
+/// topography cutoff longer than half the map's scan.
 fn inside_refused_by_another_rule(kind: Kind, k: &Key, v: f64) -> bool {
     (k.key == "points" && kind != Kind::Switch && v < 2.0)
         || (k.key == "switch.dimple_height" && v >= 2e-6)
+        // a cutoff beyond half the scan of the map (0.8 um) leaves it no wavelength
+        || (k.key == "surface.topography_cutoff" && v > 0.8e-6)
 }
 
 #[test]
@@ -148,7 +197,9 @@ fn a_key_left_out_takes_the_registry_default_for_every_kind() {
         for k in keys::of(kind) {
             // the paper's scene (with another material for the counter keys): the drive
             // keys are alternatives, each absent when another is given
-            let mut s = if k.key.starts_with("contact.counter_") {
+            let mut s = if k.key.starts_with("contact.counter_")
+                || k.key.starts_with("surface.topography")
+            {
                 base(kind, k.key)
             } else {
                 Scene::paper(kind)

@@ -5,8 +5,9 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, Criterion};
 use topography::io::{decode, encode};
 use topography::{
-    analyze, find_summits, finite_difference_moments, synthesize, Amplitudes, AnalysisOptions,
-    Format, HeightMap, Normalization, ReadOptions, SelfAffinePsd, SynthesisOptions,
+    analyze, find_summits, finite_difference_moments, lowpass, synthesize, Amplitudes,
+    AnalysisOptions, Format, HeightMap, Normalization, ReadOptions, SelfAffinePsd,
+    SynthesisOptions,
 };
 
 fn map_1024() -> HeightMap {
@@ -41,9 +42,20 @@ fn bench(c: &mut Criterion) {
         coarsen: vec![],
         scan_divisors: vec![],
         psd_bins: 0,
+        band: vec![],
         ..AnalysisOptions::default()
     };
-    g.bench_function("analyze (no tables)", |b| {
+    g.bench_function("analyze (full report, no band table)", |b| {
+        let o = AnalysisOptions {
+            band: vec![],
+            ..AnalysisOptions::default()
+        };
+        b.iter(|| analyze(black_box(&map), &o).unwrap())
+    });
+    g.bench_function("Gaussian low-pass (cutoff 160 nm)", |b| {
+        b.iter(|| lowpass(black_box(&map), 160e-9))
+    });
+    g.bench_function("analyze (no tables, no band)", |b| {
         b.iter(|| analyze(black_box(&map), &lean).unwrap())
     });
     g.bench_function("finite-difference moments", |b| {

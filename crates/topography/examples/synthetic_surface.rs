@@ -1,4 +1,4 @@
-//! docs/topography.md section 8: from a synthetic surface to the scene fragment.
+//! docs/topography.md section 13: from a synthetic surface to the scene fragment.
 //!
 //! `cargo run --release -p topography --example synthetic_surface -- OUT_DIR` synthesises a
 //! self-affine surface, writes it as an x3p file, reads it back, analyses it and writes

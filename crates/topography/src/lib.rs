@@ -16,7 +16,9 @@
 //!   sigma_s, mean -> offset), count per area and mean curvature -(z_xx + z_yy)/2.
 //!
 //! Both depend on the sampling interval and the scan size, so the report repeats them on the
-//! map block-averaged by 2, 4, 8 and on tiles of it. A self-affine PSD gives the moments
+//! map block-averaged by 2, 4, 8, on tiles of it, and across a band of short-wavelength
+//! cutoffs ([`lowpass`], a Gaussian filter); a cutoff of the user's, or one from the
+//! contact's own scale ([`Cutoff`]), chooses the band the parameters describe. A self-affine PSD gives the moments
 //! analytically ([`SelfAffinePsd`]), and [`synthesize`] makes seeded periodic test surfaces
 //! with a given spectrum. Formulas, derivations and caveats: `docs/topography.md`.
 //!
@@ -46,6 +48,7 @@ struct ReadmeDoctests;
 mod detrend;
 mod error;
 mod fill;
+mod filter;
 mod gw;
 pub mod io;
 mod map;
@@ -59,6 +62,9 @@ mod synth;
 pub use detrend::{detrend, Detrend, DetrendSummary};
 pub use error::{Result, TopographyError};
 pub use fill::{fill_harmonic, FillSummary};
+pub use filter::{
+    filters, gaussian_transmission, lowpass, nyquist_wavelength, FILTER_METHOD, GAUSSIAN_ALPHA,
+};
 pub use gw::{mccool, GwParameters, MCCOOL_SIGMA_CONSTANT};
 pub use io::{read_path, Format, Measurement, ReadOptions, Source, Undefined};
 pub use map::{HeightMap, LengthUnit};
@@ -67,8 +73,9 @@ pub use moments::{
 };
 pub use psd::{Normalization, SelfAffinePsd};
 pub use report::{
-    analyze, analyze_measurement, scene_fragment, AnalysisOptions, Grid, PlotMap, Plots, Route,
-    ScaleRow, SpectralRoute, SumSurface, SummitRoute, TopographyReport, Warning,
+    analyze, analyze_measurement, scene_fragment, AnalysisOptions, BandRow, Cutoff, CutoffSummary,
+    Grid, PlotMap, Plots, Route, ScaleRow, SpectralRoute, SumSurface, SummitRoute,
+    TopographyReport, Warning, SPOT_CUTOFF_FACTOR,
 };
 pub use stats::{histogram, shape, Histogram, Shape, EXCESS_KURTOSIS_LIMIT, SKEWNESS_LIMIT};
 pub use summits::{find_summits, summit_statistics, Summit, SummitStatistics};

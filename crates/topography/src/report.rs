@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use crate::detrend::{detrend, Detrend, DetrendSummary};
 use crate::error::{Result, TopographyError};
+use crate::filter::{filters, lowpass, nyquist_wavelength, FILTER_METHOD};
 use crate::gw::{mccool, GwParameters, MCCOOL_SIGMA_CONSTANT};
 use crate::io::{Measurement, Source};
 use crate::map::HeightMap;
@@ -30,7 +31,40 @@ pub struct AnalysisOptions {
     pub histogram_bins: usize,
     /// Logarithmic bins of the radially averaged PSD (default 40; 0 skips the PSD and its FFT).
     pub psd_bins: usize,
+    /// The short-wavelength cutoff: the map is low-pass filtered at it ([`crate::lowpass`])
+    /// before everything else, so that the GW parameters describe the wavelengths longer
+    /// than it (default: none, the map as sampled).
+    pub cutoff: Cutoff,
+    /// The band table: both routes repeated at these cutoffs, in multiples of the Nyquist
+    /// wavelength 2 max(dx, dy) (default 2, 4, 8, 16, 32; cutoffs longer than a quarter of
+    /// the shorter scan side are left out; empty: the table holds the map as sampled and
+    /// the chosen cutoff only).
+    pub band: Vec<f64>,
 }
+
+/// The short-wavelength cutoff of an analysis.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "kind", content = "value")]
+pub enum Cutoff {
+    /// No filter: the map as sampled (its shortest wavelength is the Nyquist 2 dx).
+    #[default]
+    None,
+    /// A wavelength (m), finite and > 0; at or below the Nyquist wavelength it leaves the
+    /// map as sampled.
+    Wavelength(f64),
+    /// From the contact's own scale: the cutoff is [`SPOT_CUTOFF_FACTOR`] times the Hertz
+    /// contact-spot radius a = sqrt(R sigma_s) of an asperity of this tip radius R (m)
+    /// pressed sigma_s deep (sigma_s of the summits of the map as sampled; the spectral
+    /// route's if the grid has none).
+    ContactRadius(f64),
+}
+
+/// The cutoff wavelength in contact-spot radii (`Cutoff::ContactRadius`): 4 a. A sinusoid
+/// of wavelength lambda has crests lambda/2 wide; a spot of diameter 2a fits on one crest
+/// when lambda >= 4a. Shorter wavelengths put several of their crests inside one spot: they
+/// are roughness of the asperity that the spot flattens or spans, not asperities of their
+/// own (docs/topography.md section 10).
+pub const SPOT_CUTOFF_FACTOR: f64 = 4.0;
 
 impl Default for AnalysisOptions {
     fn default() -> Self {
@@ -41,6 +75,8 @@ impl Default for AnalysisOptions {
             plot_side: 256,
             histogram_bins: 40,
             psd_bins: 40,
+            cutoff: Cutoff::None,
+            band: vec![2.0, 4.0, 8.0, 16.0, 32.0],
         }
     }
 }
@@ -162,6 +198,51 @@ pub struct ScaleRow {
     pub summit_count: usize,
 }
 
+/// The short-wavelength cutoff of a report (JSON object `cutoff`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CutoffSummary {
+    /// The cutoff wavelength chosen (m), given or from the contact radius; `null`: none.
+    pub wavelength: Option<f64>,
+    /// Whether the map was filtered: false without a cutoff, or with one at or below the
+    /// Nyquist wavelength in both directions (the map as sampled).
+    pub applied: bool,
+    /// Where the cutoff came from: `none`, `given` or `contact_radius`.
+    pub from: &'static str,
+    /// The contact (asperity tip) radius R the cutoff was derived from (m).
+    pub contact_radius: Option<f64>,
+    /// The contact-spot radius a = sqrt(R sigma_s) (m); the cutoff is 4 a.
+    pub spot_radius: Option<f64>,
+    /// The Nyquist wavelength 2 max(dx, dy) (m): the shortest wavelength of the map.
+    pub nyquist_wavelength: f64,
+    /// The filter, stated.
+    pub filter: &'static str,
+}
+
+/// One row of the band table: both routes with the map low-pass filtered at `cutoff`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BandRow {
+    /// The cutoff wavelength (m); `null`: the map as sampled.
+    pub cutoff: Option<f64>,
+    /// The cutoff in Nyquist wavelengths 2 max(dx, dy) (1 for the map as sampled).
+    pub nyquist_multiple: f64,
+    /// Whether this is the band of the report's parameters.
+    pub chosen: bool,
+    /// Rms height (m).
+    pub rms_height: f64,
+    /// m2 (dimensionless).
+    pub m2: f64,
+    /// m4 (1/m^2).
+    pub m4: f64,
+    /// Nayak's alpha.
+    pub alpha: f64,
+    /// The spectral route.
+    pub spectral: GwParameters,
+    /// The summit route (`None` if fewer than 2 summits).
+    pub summits: Option<GwParameters>,
+    /// Summits found.
+    pub summit_count: usize,
+}
+
 /// A warning with a stable code (for scripts) and a message (for people).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Warning {
@@ -242,6 +323,12 @@ pub struct TopographyReport {
     pub sampling: Vec<ScaleRow>,
     /// Both routes on smaller scans (tiles of the map), averaged over the tiles.
     pub scan_size: Vec<ScaleRow>,
+    /// The short-wavelength cutoff applied before the analysis (the band of wavelengths the
+    /// parameters describe).
+    pub cutoff: CutoffSummary,
+    /// Both routes at a few cutoffs, from the map as sampled to long wavelengths: how the
+    /// GW parameters depend on the band (row `chosen` is the report's).
+    pub band: Vec<BandRow>,
     /// Warnings.
     pub warnings: Vec<Warning>,
     /// Statements of what is what (heights vs summits, the methods, the caveats).
@@ -466,13 +553,158 @@ pub fn analyze_measurement(m: &Measurement, opts: &AnalysisOptions) -> Result<To
     Ok(r)
 }
 
-/// Analyses a height map: detrending, the moments m0, m2, m4 and alpha, the GW parameters by
-/// both routes, the sampling and scan-size tables, the Gaussian checks, the warnings and the
-/// plot data.
+/// Analyses a height map: detrending, the short-wavelength cutoff (`opts.cutoff`: the
+/// detrended map low-pass filtered at it, [`crate::lowpass`]), the moments m0, m2, m4 and
+/// alpha, the GW parameters by both routes, the band, sampling and scan-size tables, the
+/// Gaussian checks, the warnings and the plot data.
 ///
-/// Errors if the map is too small for the detrending order or flat after detrending.
+/// Errors if the map is too small for the detrending order or flat after detrending, or
+/// the cutoff is not a finite length > 0 or exceeds half the shorter scan side.
 pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyReport> {
-    let c = core(map, opts.detrend)?;
+    let sampled = core(map, opts.detrend)?;
+    let nyquist = nyquist_wavelength(map.dx().max(map.dy()));
+    let half_scan = 0.5 * map.scan_x().min(map.scan_y());
+    let positive = |name: &'static str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(TopographyError::param(
+                name,
+                format!("{v:e}"),
+                "must be a finite length > 0 (m)",
+            ))
+        }
+    };
+    let mut cutoff = CutoffSummary {
+        wavelength: None,
+        applied: false,
+        from: "none",
+        contact_radius: None,
+        spot_radius: None,
+        nyquist_wavelength: nyquist,
+        filter: FILTER_METHOD,
+    };
+    match opts.cutoff {
+        Cutoff::None => {}
+        Cutoff::Wavelength(w) => {
+            cutoff.wavelength = Some(positive("cutoff", w)?);
+            cutoff.from = "given";
+        }
+        Cutoff::ContactRadius(r) => {
+            let r = positive("contact radius", r)?;
+            let sigma_s = sampled
+                .summits
+                .as_ref()
+                .map_or(sampled.spectral.sigma_s, |s| s.gw.sigma_s);
+            let a = (r * sigma_s).sqrt();
+            cutoff.wavelength = Some(SPOT_CUTOFF_FACTOR * a);
+            cutoff.from = "contact_radius";
+            cutoff.contact_radius = Some(r);
+            cutoff.spot_radius = Some(a);
+        }
+    }
+    if let Some(w) = cutoff.wavelength {
+        if w > half_scan {
+            let origin = match (cutoff.contact_radius, cutoff.spot_radius) {
+                (Some(r), Some(a)) => format!(
+                    " (from the contact radius {r:e} m: {SPOT_CUTOFF_FACTOR} x the spot radius sqrt(R sigma_s) = {a:e} m)"
+                ),
+                _ => String::new(),
+            };
+            return Err(TopographyError::param(
+                "cutoff",
+                format!("{w:e} m{origin}"),
+                format!(
+                    "must be at most half the shorter scan side ({half_scan:e} m): a longer cutoff leaves fewer than two \
+                     wavelengths of the map; measure a larger scan for this contact, or give a shorter cutoff (0: the \
+                     map as sampled)"
+                ),
+            ));
+        }
+        cutoff.applied = filters(w, map.dx()) || filters(w, map.dy());
+    }
+    // the band table, on the detrended map as sampled
+    let mut band = vec![band_row(&sampled, None, 1.0, !cutoff.applied)];
+    let mut cutoffs: Vec<(f64, bool)> = opts
+        .band
+        .iter()
+        .filter(|&&f| f.is_finite() && f > 1.0)
+        .map(|&f| (f * nyquist, false))
+        .filter(|&(w, _)| w <= 0.5 * half_scan)
+        .collect();
+    if let (true, Some(w)) = (cutoff.applied, cutoff.wavelength) {
+        match cutoffs.iter_mut().find(|(x, _)| (x / w - 1.0).abs() < 1e-9) {
+            Some(c) => c.1 = true,
+            None => cutoffs.push((w, true)),
+        }
+    }
+    cutoffs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut chosen = None;
+    for (w, is_chosen) in cutoffs {
+        let filtered = lowpass(&sampled.map, w);
+        match core(&filtered, opts.detrend) {
+            Ok(c) => {
+                band.push(band_row(&c, Some(w), w / nyquist, is_chosen));
+                if is_chosen {
+                    chosen = Some((filtered, c));
+                }
+            }
+            Err(e) if is_chosen => {
+                return Err(TopographyError::param(
+                    "cutoff",
+                    format!("{w:e} m"),
+                    format!("the map filtered at it cannot be analysed: {e}"),
+                ))
+            }
+            Err(_) => {}
+        }
+    }
+    let mut r = match chosen {
+        Some((filtered, c)) => {
+            let mut r = report(&filtered, c, opts)?;
+            r.detrending = sampled.summary;
+            r
+        }
+        None => report(map, sampled, opts)?,
+    };
+    if let Some(w) = cutoff.wavelength {
+        r.notes.push(if cutoff.applied {
+            format!(
+                "band: the map is low-pass filtered at the cutoff {w:.4e} m ({}) before the analysis: the GW \
+                 parameters describe the wavelengths longer than it; {FILTER_METHOD}",
+                match cutoff.from {
+                    "contact_radius" => "4 x the contact-spot radius sqrt(R sigma_s)",
+                    _ => "given",
+                }
+            )
+        } else {
+            format!(
+                "band: the cutoff {w:.4e} m is at or below the Nyquist wavelength {nyquist:.4e} m: the map as sampled"
+            )
+        });
+    }
+    r.cutoff = cutoff;
+    r.band = band;
+    Ok(r)
+}
+
+fn band_row(c: &Core, cutoff: Option<f64>, nyquist_multiple: f64, chosen: bool) -> BandRow {
+    BandRow {
+        cutoff,
+        nyquist_multiple,
+        chosen,
+        rms_height: c.moments.rms_height(),
+        m2: c.moments.m2,
+        m4: c.moments.m4,
+        alpha: c.moments.alpha(),
+        spectral: c.spectral,
+        summits: c.summits.as_ref().map(|s| s.gw),
+        summit_count: c.summits.as_ref().map_or(0, |s| s.count),
+    }
+}
+
+/// The report of `map` whose core `c` is computed (the map as sampled, or filtered).
+fn report(map: &HeightMap, c: Core, opts: &AnalysisOptions) -> Result<TopographyReport> {
     let m = c.moments;
     let largest = map.heights().iter().fold(0.0_f64, |m, z| m.max(z.abs()));
     let dx = map.dx();
@@ -624,7 +856,9 @@ pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyRepo
                     "sampling_dependent",
                     format!(
                         "doubling the sampling interval changes the summit density by {:+.0}% and the radius by \
-                         {:+.0}%: the GW parameters describe the surface at this sampling interval, not intrinsically",
+                         {:+.0}%: the GW parameters describe the surface at this sampling interval, not intrinsically; \
+                         choose the band of wavelengths that matters for the contact (a cutoff; the band table; \
+                         docs/topography.md section 10)",
                         100.0 * (b.asperity_density / a.asperity_density - 1.0),
                         100.0 * (b.radius / a.radius - 1.0)
                     ),
@@ -767,6 +1001,16 @@ pub fn analyze(map: &HeightMap, opts: &AnalysisOptions) -> Result<TopographyRepo
         heights: heights_shape,
         sampling,
         scan_size,
+        cutoff: CutoffSummary {
+            wavelength: None,
+            applied: false,
+            from: "none",
+            contact_radius: None,
+            spot_radius: None,
+            nyquist_wavelength: nyquist_wavelength(map.dx().max(map.dy())),
+            filter: FILTER_METHOD,
+        },
+        band: Vec::new(),
         warnings: w,
         notes,
         plots,
@@ -838,6 +1082,48 @@ pub fn scene_fragment(report: &TopographyReport, route: Route) -> Result<String>
             "# The {name} route gives sigma_s = {:.4e} m, asperity_density = {:.4e} 1/m^2, radius = {:.4e} m.",
             o.sigma_s, o.asperity_density, o.radius
         );
+    }
+    let c = &report.cutoff;
+    match (c.wavelength, c.applied) {
+        (Some(w), true) => {
+            let from = match (c.contact_radius, c.spot_radius) {
+                (Some(r), Some(a)) => format!(
+                    "4 x the contact-spot radius sqrt(R sigma_s) = {a:.4e} m of R = {r:.4e} m"
+                ),
+                _ => "given".to_string(),
+            };
+            let _ = writeln!(
+                s,
+                "# Band: wavelengths longer than the cutoff {w:.4e} m ({from}; Gaussian low-pass, ISO 16610-61)."
+            );
+        }
+        _ => {
+            let _ = writeln!(
+                s,
+                "# Band: the map as sampled (no cutoff; its shortest wavelength is 2 dx = {:.4e} m).",
+                c.nyquist_wavelength
+            );
+        }
+    }
+    let band: Vec<&BandRow> = report.band.iter().filter(|r| r.cutoff.is_some()).collect();
+    if !band.is_empty() {
+        let _ = writeln!(s, "# Across the band (cutoff wavelength):");
+        for r in band {
+            let p = match route {
+                Route::Spectral => Some(r.spectral),
+                Route::Summits => r.summits,
+            };
+            if let (Some(w), Some(p)) = (r.cutoff, p) {
+                let _ = writeln!(
+                    s,
+                    "#   {w:.3e} m{}: sigma_s = {:.4e} m, asperity_density = {:.4e} 1/m^2, radius = {:.4e} m",
+                    if r.chosen { " (this fragment)" } else { "" },
+                    p.sigma_s,
+                    p.asperity_density,
+                    p.radius
+                );
+            }
+        }
     }
     let _ = writeln!(
         s,

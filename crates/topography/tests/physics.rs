@@ -323,6 +323,116 @@ fn coarser_sampling_gives_fewer_blunter_summits() {
     assert!(r.scan_size[2].rms_height < r.scan_size[0].rms_height);
 }
 
+/// The short-wavelength cutoff (docs/topography.md section 10): a cutoff at the pixel scale
+/// (at or below the Nyquist wavelength 2 dx) leaves the analysis exactly as without one;
+/// longer cutoffs remove the short wavelengths, so the summits grow fewer and blunter,
+/// monotonically across the band table, and the report's parameters are its chosen row.
+#[test]
+fn a_cutoff_at_the_pixel_scale_changes_nothing_and_longer_ones_lower_the_summit_density() {
+    use topography::Cutoff;
+    let dx = 4e-9;
+    let psd = psd(0.8, 256.0 * dx, 2.0 * dx);
+    let map = synthesize(&psd, &opts(256, dx, 4, Amplitudes::Gaussian)).unwrap();
+    let plain = analyze(&map, &AnalysisOptions::default()).unwrap();
+    assert_eq!(plain.cutoff.wavelength, None);
+    assert!(!plain.cutoff.applied && plain.band[0].chosen && plain.band[0].cutoff.is_none());
+    for w in [dx, 2.0 * dx] {
+        let r = analyze(
+            &map,
+            &AnalysisOptions {
+                cutoff: Cutoff::Wavelength(w),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(r.cutoff.wavelength, Some(w));
+        assert!(!r.cutoff.applied, "{w:e}");
+        assert_eq!(r.summits, plain.summits, "{w:e}");
+        assert_eq!(r.spectral, plain.spectral, "{w:e}");
+        assert_eq!((r.m2, r.m4), (plain.m2, plain.m4));
+        assert_eq!(r.band, plain.band);
+    }
+    // the band table: the map as sampled, then 2, 4, 8, ... Nyquist wavelengths (8 nm) up to
+    // a quarter of the scan (256 nm)
+    assert!(plain.band.len() >= 5, "{}", plain.band.len());
+    for (k, b) in plain.band.iter().enumerate().skip(1) {
+        let want = 8e-9 * 2f64.powi(k as i32);
+        assert!((b.cutoff.unwrap() / want - 1.0).abs() < 1e-12);
+        assert!(b.cutoff.unwrap() <= 256e-9 * (1.0 + 1e-12) && !b.chosen);
+    }
+    for w in plain.band.windows(2) {
+        let (a, b) = (w[0].summits.unwrap(), w[1].summits.unwrap());
+        assert!(
+            b.asperity_density < a.asperity_density,
+            "density {:e} -> {:e}",
+            a.asperity_density,
+            b.asperity_density
+        );
+        assert!(b.radius > a.radius);
+        assert!(w[1].m4 < w[0].m4 && w[1].m2 < w[0].m2);
+        assert!(w[1].spectral.asperity_density < w[0].spectral.asperity_density);
+    }
+    // a cutoff inside the band: the report is that row, the rms height barely moves (the
+    // long waves carry it), the density falls
+    let w = 48e-9;
+    let r = analyze(
+        &map,
+        &AnalysisOptions {
+            cutoff: Cutoff::Wavelength(w),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(r.cutoff.applied && r.cutoff.from == "given");
+    let row = r.band.iter().find(|b| b.chosen).unwrap();
+    assert_eq!(row.cutoff, Some(w));
+    assert_eq!(r.band.iter().filter(|b| b.chosen).count(), 1);
+    assert_eq!(row.summits, r.summits.as_ref().map(|s| s.gw));
+    assert_eq!(row.spectral, r.spectral.gw);
+    let (a, b) = (
+        plain.summits.as_ref().unwrap().gw,
+        r.summits.as_ref().unwrap().gw,
+    );
+    assert!(b.asperity_density < 0.5 * a.asperity_density);
+    assert!(r.rms_height < plain.rms_height && r.rms_height > 0.9 * plain.rms_height);
+    assert!(scene_fragment(&r, Route::Summits)
+        .unwrap()
+        .contains("# Band: wavelengths longer than the cutoff"));
+    // from the contact's scale: 4 sqrt(R sigma_s) with sigma_s of the summits as sampled
+    let radius = 1e-7;
+    let r = analyze(
+        &map,
+        &AnalysisOptions {
+            cutoff: Cutoff::ContactRadius(radius),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let a = (radius * plain.summits.as_ref().unwrap().gw.sigma_s).sqrt();
+    assert_eq!(r.cutoff.from, "contact_radius");
+    assert_eq!(r.cutoff.spot_radius, Some(a));
+    assert_eq!(r.cutoff.wavelength, Some(4.0 * a));
+    // refused: not a length, longer than half the scan
+    for c in [
+        Cutoff::Wavelength(0.0),
+        Cutoff::Wavelength(f64::NAN),
+        Cutoff::ContactRadius(-1.0),
+        Cutoff::Wavelength(0.6e-6),
+        Cutoff::ContactRadius(1.0),
+    ] {
+        let e = analyze(
+            &map,
+            &AnalysisOptions {
+                cutoff: c,
+                ..Default::default()
+            },
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("cutoff") || e.contains("contact radius"), "{e}");
+    }
+}
+
 /// z = A (cos kx + cos ky) end to end: moments, both routes, on whole periods.
 #[test]
 fn egg_crate_report_is_exact() {

@@ -13,6 +13,25 @@ use topography::{
 mod encoders;
 use encoders::Grid;
 
+/// zlib-compresses `data` (the encoders' compressed `.sur`).
+fn zlib(data: &[u8]) -> Vec<u8> {
+    let mut e = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::default());
+    e.write_all(data).unwrap();
+    e.finish().unwrap()
+}
+
+/// A zip archive of `entries`, deflated (the encoders' `.plux`).
+fn zip_archive(entries: &[(&str, &[u8])]) -> Vec<u8> {
+    let mut w = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let opt = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    for (name, data) in entries {
+        w.start_file(*name, opt).unwrap();
+        w.write_all(data).unwrap();
+    }
+    w.finish().unwrap().into_inner()
+}
+
 /// A 13 x 9 map with dx != dy and heights of both signs spanning decades.
 fn sample_map() -> HeightMap {
     let (nx, ny) = (13, 9);

@@ -5,9 +5,14 @@
 //! Every writer takes a [`Grid`]: heights in metres, row-major (x fastest, row 0 at y = 0),
 //! NaN for a point the instrument did not measure (written as the format's marker).
 
+//!
+//! The compressors come from the test that includes this module (`super::zlib` for a
+//! compressed `.sur`, `super::zip_archive` for a `.plux`): the crate's own tests use flate2
+//! and zip, a test without those crates (the CLI's) gives its own.
+
 #![allow(dead_code)]
 
-use std::io::Write;
+use super::{zip_archive, zlib};
 
 /// A map to write: `nx` x `ny` heights `z` (m, NaN = undefined), spacings `dx`, `dy` (m).
 pub struct Grid<'a> {
@@ -355,9 +360,7 @@ pub fn sur(objects: &[SurObject]) -> Vec<u8> {
             }
         }
         if o.compressed {
-            let mut e = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::default());
-            e.write_all(&data).unwrap();
-            let zipped = e.finish().unwrap();
+            let zipped = zlib(&data);
             let mut block = Vec::new();
             block.extend_from_slice(&1u32.to_le_bytes());
             block.extend_from_slice(&(data.len() as u32).to_le_bytes());
@@ -435,18 +438,11 @@ pub fn plux(g: &Grid) -> Vec<u8> {
     for &v in g.z {
         raw.extend_from_slice(&((v * 1e6) as f32).to_le_bytes());
     }
-    let mut w = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
-    let opt = zip::write::SimpleFileOptions::default()
-        .compression_method(zip::CompressionMethod::Deflated);
-    for (name, data) in [
+    zip_archive(&[
         ("index.xml", xml.as_bytes()),
         ("recipe.txt", b"<xml/>".as_slice()),
         ("LAYER_0.raw", &raw),
-    ] {
-        w.start_file(name, opt).unwrap();
-        w.write_all(data).unwrap();
-    }
-    w.finish().unwrap().into_inner()
+    ])
 }
 
 // ---------------------------------------------------------------------------------------
