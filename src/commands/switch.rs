@@ -400,6 +400,7 @@ impl Render for SwitchResult {
             return s;
         }
         s += &table_cycles(self);
+        s += &table_dynamics(self);
         s += &table_contact(self);
         s += &table_verdict(self);
         if let Some(m) = &self.model_form {
@@ -501,6 +502,51 @@ fn ratio_text(r: f64) -> String {
 }
 
 /// Title, laws and accuracy, drive, restoring pressure.
+/// The switch in time (a `[dynamics]` section): each closure's impact, bounces, capture,
+/// energy ledger and release.
+fn table_dynamics(r: &SwitchResult) -> String {
+    let Some(d) = &r.dynamics else {
+        return String::new();
+    };
+    let si = stiction_model::guards::si;
+    let mut s = format!(
+        "\nin time: m'' = {} kg/m^2, f0 = {}, gas {} (squeeze film at contact c'' = {})\n",
+        stiction_model::keys::num(d.areal_mass),
+        si(d.natural_frequency, "Hz", 4),
+        if d.gas_pressure > 0.0 {
+            si(d.gas_pressure, "Pa", 4)
+        } else {
+            "none (vacuum)".to_string()
+        },
+        si(d.squeeze_film_coefficient_at_contact, "Pa s/m", 4),
+    );
+    let _ = writeln!(
+        s,
+        "   cycle    impact v   impact E [J/m^2]      flight   bounces     capture   ledger residual   release"
+    );
+    for c in &r.cycles {
+        let (Some(i), Some(l), Some(rel)) = (&c.impact, &c.energy_ledger, &c.release) else {
+            continue;
+        };
+        let release = match rel.opening_time {
+            Some(t) => format!("opens in {}", si(t, "s", 4)),
+            None => "held".to_string(),
+        };
+        let _ = writeln!(
+            s,
+            "{:>8} {:>11} {:>18.6e} {:>11} {:>9} {:>11} {:>17.2e}   {release}",
+            c.cycle,
+            si(i.velocity, "m/s", 4),
+            i.energy,
+            si(i.flight_time, "s", 4),
+            c.bounces.unwrap_or(0),
+            si(c.capture_time.unwrap_or(0.0), "s", 4),
+            l.residual,
+        );
+    }
+    s
+}
+
 fn table_header(r: &SwitchResult) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{}", r.title);
