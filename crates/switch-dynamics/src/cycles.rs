@@ -7,6 +7,7 @@ use crate::DynamicsError;
 use contact_core::{Path, SurfaceLaw};
 use switch_1d::{
     unload, AccommodationCause, Cycle, CycleOptions, CycleRun, EndOfImpact, Impact, ImpactFilm,
+    PressurePoint,
 };
 
 /// What the time integration adds to a cycle.
@@ -59,6 +60,7 @@ pub fn run_cycles<S: SurfaceLaw>(
     let mut records = Vec::new();
     let mut accommodated_after = None;
     let mut accommodation_cause = None;
+    let mut loading = Vec::new();
     for k in 1..=options.cycles {
         let scale = surface.length_scales(&hist)?.roughness;
         let closure = close(
@@ -73,6 +75,19 @@ pub fn run_cycles<S: SurfaceLaw>(
         let d_e = closure.deepest;
         let pressure = surface.pressure(d_e, &hist, Path::Approach)?;
         let new_hist = closure.history.clone();
+        if k == 1 && options.loading_points > 0 {
+            // the first (virgin) loading curve, from d_e to the reach, as the quasi-static
+            // runner draws it
+            let top = surface.reach(&hist, Path::Approach)?;
+            let n = options.loading_points.max(2);
+            for i in 0..n {
+                let d = d_e + (top - d_e) * i as f64 / (n - 1) as f64;
+                loading.push(PressurePoint {
+                    d,
+                    pressure: surface.pressure(d, &hist, Path::Approach)?,
+                });
+            }
+        }
         let unloading = unload(
             surface,
             &new_hist,
@@ -142,7 +157,7 @@ pub fn run_cycles<S: SurfaceLaw>(
     let first_sticking_cycle = cycles.iter().find(|c| c.sticks).map(|c| c.cycle);
     Ok((
         CycleRun {
-            loading: Vec::new(),
+            loading,
             cycles,
             accommodated_after,
             accommodation_cause,
