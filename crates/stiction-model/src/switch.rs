@@ -599,7 +599,25 @@ impl<'a> SwitchModel<'a> {
                     .transpose()
             },
         );
-        let run = run?;
+        let run = match run {
+            // under the gas the plate can stop short of a contact the vacuum drive reaches
+            Err(ModelError::Dynamics(switch_dynamics::DynamicsError::DoesNotClose {
+                time,
+                gap,
+            })) => {
+                result.closes = false;
+                result.warnings.push(Warning::note(
+                    guards::code::DOES_NOT_CLOSE,
+                    format!(
+                        "in time, the electrode turned back {} after the voltage step, {} short of the contact: the squeeze film and the spring stop it although U exceeds the dynamic pull-in voltage of the vacuum",
+                        guards::si(time, "s", 4),
+                        guards::si(gap, "m", 4)
+                    ),
+                ));
+                return Ok(result);
+            }
+            run => run?,
+        };
         // the cycles and the verdict stand on their own: a quantity computed beside them
         // that fails (the elastic comparison, a guard's check, a contact state) is absent,
         // with a warning saying which and why, instead of losing the run

@@ -34,6 +34,15 @@ pub enum DynamicsError {
         /// What was expected.
         what: &'static str,
     },
+    /// The plate turned back before touching: the voltage does not close the switch
+    /// against the spring and the gas.
+    #[error("the electrode turned back {time:e} s after the voltage step, {gap:e} m above the contact: the voltage does not close the switch against the spring and the gas")]
+    DoesNotClose {
+        /// When it turned (s).
+        time: f64,
+        /// Its distance from the contact's reach there (m).
+        gap: f64,
+    },
     /// More bounces than the limit.
     #[error("the electrode bounced more than {limit} times without being captured by the contact: the bounces do not decay (raise dynamics.max_bounces, or add gas damping)")]
     TooManyBounces {
@@ -63,6 +72,7 @@ impl Categorized for DynamicsError {
             DynamicsError::Integrator { .. }
             | DynamicsError::Timeout { .. }
             | DynamicsError::TooManyBounces { .. } => Category::Numerical,
+            DynamicsError::DoesNotClose { .. } => Category::Input,
             DynamicsError::Surface(e) => e.category(),
             DynamicsError::Switch(e) => e.category(),
         }

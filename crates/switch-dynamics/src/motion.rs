@@ -339,11 +339,10 @@ pub fn close<S: SurfaceLaw>(
         let end = ode::run("flight", rhs, &thresholds, &z0, limit_t0, tol, &mut on_step)?;
         let (t, z) = match end {
             End::Crossed { t, y, which: 0 } => (t, y),
-            End::Crossed { .. } => {
-                return Err(DynamicsError::Timeout {
-                    phase: "flight",
-                    limit: 0.0,
-                    what: "the plate turned back before touching: the voltage does not close the switch against the spring and the gas",
+            End::Crossed { t, y: z, .. } => {
+                return Err(DynamicsError::DoesNotClose {
+                    time: time + t * t0,
+                    gap: (q_contact - z[0]) * s,
                 })
             }
             End::Timeout { .. } => {
