@@ -151,12 +151,22 @@ pub fn svg(title: &str, panels: &[Panel]) -> Result<String, String> {
                 .y_label_area_size(80)
                 .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
                 .map_err(|e| e.to_string())?;
-            chart
-                .configure_mesh()
-                .x_desc(&panel.x_label)
-                .y_desc(&panel.y_label)
-                .draw()
-                .map_err(|e| e.to_string())?;
+            // a count on the x axis (cycles) is labelled at whole numbers only
+            let counted = panel.x_label == "cycle";
+            let whole = |x: &f64| {
+                if x.fract().abs() < 1e-9 {
+                    format!("{x:.0}")
+                } else {
+                    String::new()
+                }
+            };
+            let span = (xr.1 - xr.0).round().max(1.0) as usize;
+            let mut mesh = chart.configure_mesh();
+            mesh.x_desc(&panel.x_label).y_desc(&panel.y_label);
+            if counted {
+                mesh.x_labels(2 * span + 1).x_label_formatter(&whole);
+            }
+            mesh.draw().map_err(|e| e.to_string())?;
             for (i, s) in panel.series.iter().enumerate() {
                 let c = COLORS[i % COLORS.len()];
                 let runs = clip(&s.points, xr, yr);

@@ -284,7 +284,14 @@ pub fn finish<R: Render>(
     strict: bool,
     outputs: Outputs,
 ) -> Result<String, Error> {
-    render::print_warnings(result.warnings());
+    // a scene's topography notes were printed when it was loaded
+    let shown: Vec<_> = result
+        .warnings()
+        .iter()
+        .filter(|w| w.code != stiction_model::topography::TOPOGRAPHY_VALUE_OVERRIDDEN)
+        .cloned()
+        .collect();
+    render::print_warnings(&shown);
     let mut written = Vec::new();
     for (path, svg) in outputs.plots {
         let svg = svg.map_err(|message| Error::Plot {

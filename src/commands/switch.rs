@@ -167,6 +167,13 @@ impl SwitchCommand {
                 })?;
                 set.add("switch.svg", svg);
             }
+            if let Some(svg) = plot_dynamics_svg(&result) {
+                let svg = svg.map_err(|message| Error::Plot {
+                    path: dir.join("dynamics.svg").display().to_string(),
+                    message,
+                })?;
+                set.add("dynamics.svg", svg);
+            }
             outputs.folder = Some(set);
         }
         finish(
@@ -180,7 +187,13 @@ impl SwitchCommand {
 }
 
 /// The files `--out` writes.
-pub const FILES: &[&str] = &["switch.json", "cycles.csv", "curves.csv", "switch.svg"];
+pub const FILES: &[&str] = &[
+    "switch.json",
+    "cycles.csv",
+    "curves.csv",
+    "switch.svg",
+    "dynamics.svg",
+];
 
 /// Every curve in long form.
 pub fn curves_csv(r: &SwitchResult) -> String {
@@ -210,6 +223,85 @@ pub fn curves_csv(r: &SwitchResult) -> String {
         }
     }
     s
+}
+
+/// The switch in time (a `[dynamics]` section with curves): the first closure's
+/// displacement and contact pressure against time, and each cycle's impact energy and
+/// bounces. None for a quasi-static run or without curves (`points = 0`).
+pub fn plot_dynamics_svg(r: &SwitchResult) -> Option<Result<String, String>> {
+    let d = r.dynamics.as_ref()?;
+    if d.trace.is_empty() {
+        return None;
+    }
+    let t = |p: &stiction_model::switch_dynamics::TracePoint| p.t * 1e6;
+    let cycles =
+        |f: &dyn Fn(&stiction_model::switch::CycleResult) -> Option<f64>| -> Vec<(f64, f64)> {
+            r.cycles
+                .iter()
+                .filter_map(|c| f(c).map(|v| (c.cycle as f64, v)))
+                .collect()
+        };
+    let n = r.cycles.len() as f64;
+    let panels = vec![
+        Panel {
+            caption: format!(
+                "cycle 1: the flight, the impact and {} bounce(s), m'' = {:.4e} kg/m^2, gas {} Pa",
+                r.cycles[0].bounces.unwrap_or(0),
+                d.areal_mass,
+                d.gas_pressure
+            ),
+            x_label: "time [us]".into(),
+            y_label: "displacement [um]".into(),
+            series: vec![Series {
+                name: "displacement toward the substrate".into(),
+                points: d
+                    .trace
+                    .iter()
+                    .map(|p| (t(p), p.displacement * 1e6))
+                    .collect(),
+            }],
+            x_range: None,
+            y_range: None,
+        },
+        Panel {
+            caption: "cycle 1: the contact pressure (per contact area)".into(),
+            x_label: "time [us]".into(),
+            y_label: "contact pressure [MPa]".into(),
+            series: vec![Series {
+                name: "contact pressure".into(),
+                points: d
+                    .trace
+                    .iter()
+                    .map(|p| (t(p), p.contact_pressure * 1e-6))
+                    .collect(),
+            }],
+            x_range: None,
+            y_range: None,
+        },
+        Panel {
+            caption: "kinetic energy where each closure's contact begins".into(),
+            x_label: "cycle".into(),
+            y_label: "impact energy [J/m^2]".into(),
+            series: vec![Series {
+                name: "impact energy (per electrode area)".into(),
+                points: cycles(&|c| c.impact.map(|i| i.energy)),
+            }],
+            x_range: Some((0.5, n + 0.5)),
+            y_range: None,
+        },
+        Panel {
+            caption: "bounces per closure".into(),
+            x_label: "cycle".into(),
+            y_label: "bounces".into(),
+            series: vec![Series {
+                name: "bounces".into(),
+                points: cycles(&|c| c.bounces.map(|b| b as f64)),
+            }],
+            x_range: Some((0.5, n + 0.5)),
+            y_range: None,
+        },
+    ];
+    Some(crate::plot::svg(&format!("{}: in time", r.title), &panels))
 }
 
 /// The cycles a plot draws: 1, 2, 3, the first that sticks, the one accommodation stops
@@ -400,6 +492,7 @@ impl Render for SwitchResult {
             return s;
         }
         s += &table_cycles(self);
+        s += &table_dynamics(self);
         s += &table_contact(self);
         s += &table_verdict(self);
         if let Some(m) = &self.model_form {
@@ -501,6 +594,51 @@ fn ratio_text(r: f64) -> String {
 }
 
 /// Title, laws and accuracy, drive, restoring pressure.
+/// The switch in time (a `[dynamics]` section): each closure's impact, bounces, capture,
+/// energy ledger and release.
+fn table_dynamics(r: &SwitchResult) -> String {
+    let Some(d) = &r.dynamics else {
+        return String::new();
+    };
+    let si = stiction_model::guards::si;
+    let mut s = format!(
+        "\nin time: m'' = {} kg/m^2, f0 = {}, gas {} (squeeze film at contact c'' = {})\n",
+        stiction_model::keys::num(d.areal_mass),
+        si(d.natural_frequency, "Hz", 4),
+        if d.gas_pressure > 0.0 {
+            si(d.gas_pressure, "Pa", 4)
+        } else {
+            "none (vacuum)".to_string()
+        },
+        si(d.squeeze_film_coefficient_at_contact, "Pa s/m", 4),
+    );
+    let _ = writeln!(
+        s,
+        "   cycle    impact v   impact E [J/m^2]      flight   bounces     capture   ledger residual   release"
+    );
+    for c in &r.cycles {
+        let (Some(i), Some(l), Some(rel)) = (&c.impact, &c.energy_ledger, &c.release) else {
+            continue;
+        };
+        let release = match rel.opening_time {
+            Some(t) => format!("opens in {}", si(t, "s", 4)),
+            None => "held".to_string(),
+        };
+        let _ = writeln!(
+            s,
+            "{:>8} {:>11} {:>18.6e} {:>11} {:>9} {:>11} {:>17.2e}   {release}",
+            c.cycle,
+            si(i.velocity, "m/s", 4),
+            i.energy,
+            si(i.flight_time, "s", 4),
+            c.bounces.unwrap_or(0),
+            si(c.capture_time.unwrap_or(0.0), "s", 4),
+            l.residual,
+        );
+    }
+    s
+}
+
 fn table_header(r: &SwitchResult) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{}", r.title);

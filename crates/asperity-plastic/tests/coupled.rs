@@ -194,9 +194,7 @@ fn on_gold_adhesion_alone_yields_and_the_table_meets_the_solve() {
         .unwrap()
         .table_sizes();
     assert!(
-        sizes
-            .iter()
-            .all(|&(_, n, dev)| n <= 4097 && dev <= 1e-8),
+        sizes.iter().all(|&(_, n, dev)| n <= 4097 && dev <= 1e-8),
         "{sizes:?}"
     );
 }

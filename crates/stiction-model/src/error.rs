@@ -160,6 +160,9 @@ pub enum ModelError {
     /// `switch-1d`.
     #[error(transparent)]
     Switch(#[from] switch_1d::SwitchError),
+    /// `switch-dynamics`.
+    #[error(transparent)]
+    Dynamics(#[from] switch_dynamics::DynamicsError),
     /// A law through the trait seam (a user's law included).
     #[error(transparent)]
     Law(#[from] LawError),
@@ -242,6 +245,7 @@ impl Categorized for ModelError {
             ModelError::Plastic(e) => e.category(),
             ModelError::Surface(e) => e.category(),
             ModelError::Switch(e) => e.category(),
+            ModelError::Dynamics(e) => e.category(),
             ModelError::Law(e) => e.category(),
             ModelError::Design(e) => e.category(),
             ModelError::ContactLaw(e) => {

@@ -48,8 +48,11 @@ pub mod code {
     /// A cycle's reported error estimate (d_e or pull-out) above the accuracy mode's
     /// target: the result is what the mode could do, not what it promises.
     pub const ESTIMATE_ABOVE_TARGET: &str = "estimate_above_target";
+    /// In time, the electrode stopped short of the contact (the gas and the spring) although
+    /// the vacuum drive would close: the switch does not close.
+    pub const DOES_NOT_CLOSE: &str = "does_not_close";
     /// Every code above.
-    pub const ALL: [&str; 10] = [
+    pub const ALL: [&str; 11] = [
         ADHESION_YIELDS,
         BEYOND_FIT_RANGE,
         ABOVE_HARDNESS,
@@ -60,6 +63,7 @@ pub mod code {
         OUTSIDE_SCENE_DOMAIN,
         NOT_COMPUTED,
         ESTIMATE_ABOVE_TARGET,
+        DOES_NOT_CLOSE,
     ];
 }
 
@@ -140,6 +144,7 @@ impl Validity {
                 code::HOLD_DEEPER_THAN_IMPACT => "the hold presses deeper than the impact",
                 code::OUTSIDE_SCENE_DOMAIN => "a derived value lies outside its scene key's domain",
                 code::NOT_COMPUTED => "a quantity beside the cycles could not be computed",
+                code::DOES_NOT_CLOSE => "the electrode stops short of the contact in time",
                 code::ESTIMATE_ABOVE_TARGET => {
                     "an error estimate exceeds the accuracy mode's target"
                 }

@@ -69,6 +69,7 @@ pub use design_sweep;
 pub use gw_surface;
 pub use maugis_kim;
 pub use switch_1d;
+pub use switch_dynamics;
 
 /// Where a long run reports how far it is. Front ends show it (a progress bar); the
 /// library only counts. Calls may come from several threads.

@@ -312,9 +312,52 @@ pub struct SwitchSpec {
     pub contact_states: ContactStates,
     /// The model-form check (`model_form` and its pins).
     pub model_form: crate::model_form::ModelFormSpec,
+    /// The switch in time (`[dynamics]`), if the scene asks for it.
+    pub dynamics: Option<DynamicsSpec>,
+}
+
+/// The `[dynamics]` section: the electrode's mass and the gas under it (theory 13).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicsSpec {
+    /// m'' (kg/m^2), if given.
+    pub areal_mass: Option<f64>,
+    /// f0 (Hz), if given instead.
+    pub resonance_frequency: Option<f64>,
+    /// The gas film, when gas_pressure > 0.
+    pub gas: Option<GasSpec>,
+    /// Bounces allowed per closure.
+    pub max_bounces: usize,
+}
+
+impl DynamicsSpec {
+    /// m'' (kg/m^2) for a spring K_s (Pa/m): given, or K_s/(2 pi f0)^2.
+    pub fn areal_mass(&self, k_s: f64) -> f64 {
+        match (self.areal_mass, self.resonance_frequency) {
+            (Some(m), _) => m,
+            (None, Some(f)) => k_s / (2.0 * std::f64::consts::PI * f).powi(2),
+            (None, None) => f64::NAN,
+        }
+    }
+}
+
+/// The gas under the plate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GasSpec {
+    /// Pressure (Pa).
+    pub pressure: f64,
+    /// Viscosity (Pa s).
+    pub viscosity: f64,
+    /// Mean free path at 101325 Pa (m).
+    pub mean_free_path: f64,
+    /// Plate width (m).
+    pub width: f64,
+    /// Plate length (m).
+    pub length: f64,
 }
 
 /// Any validated scene.
+// a spec is built once a run and moved rarely: the switch's size is no cost worth a box
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 #[non_exhaustive]
 pub enum Spec {
@@ -470,6 +513,7 @@ impl SwitchSpec {
             _ => ContactStates::EveryCycle,
         };
         let model_form = r.model_form(registry)?;
+        let dynamics = r.dynamics(&switch)?;
         let common = r.common(0)?;
         // every cycle writes its curves and the whole result is held for rendering: bound
         // it up front rather than fail on memory after the computation
@@ -501,6 +545,7 @@ impl SwitchSpec {
             elastic_comparison,
             contact_states,
             model_form,
+            dynamics,
         })
     }
 }
@@ -1114,6 +1159,84 @@ impl<'a> Reader<'a> {
             sigma_s: self.number("surface.sigma_s")?,
             asperity_density: self.number("surface.asperity_density")?,
         })
+    }
+
+    /// The `[dynamics]` section, if the scene has one (its keys are read only then, so a
+    /// quasi-static scene's echo stays as it was).
+    fn dynamics(
+        &mut self,
+        switch: &SwitchGeometrySpec,
+    ) -> Result<Option<DynamicsSpec>, SceneError> {
+        if self.scene.get("dynamics").is_none() {
+            return Ok(None);
+        }
+        if let Drive::ImpactEnergy(e) = switch.drive {
+            return Err(self.fail(
+                "switch.impact_energy",
+                num(e),
+                "absent with a [dynamics] section: the impact energy is what the integration finds; give k_s (or spring_constant with electrode_area) and the voltage",
+            ));
+        }
+        let areal_mass = self.opt_number("dynamics.areal_mass")?;
+        let resonance_frequency = self.opt_number("dynamics.resonance_frequency")?;
+        match (areal_mass, resonance_frequency) {
+            (Some(_), Some(f)) => {
+                return Err(self.fail(
+                    "dynamics.resonance_frequency",
+                    num(f),
+                    "absent when areal_mass is given (the same mass twice): give one of the two",
+                ))
+            }
+            (None, None) => {
+                return Err(SceneError::Missing {
+                    file: self.file(),
+                    key: "dynamics.areal_mass".into(),
+                    explanation: "a [dynamics] section needs the electrode's mass: areal_mass (kg/m^2) or resonance_frequency (Hz)".into(),
+                })
+            }
+            _ => {}
+        }
+        let pressure = self.number("dynamics.gas_pressure")?;
+        let viscosity = self.number("dynamics.gas_viscosity")?;
+        let mean_free_path = self.number("dynamics.gas_mean_free_path")?;
+        let width = self.opt_number("dynamics.plate_width")?;
+        let length = self.opt_number("dynamics.plate_length")?;
+        let max_bounces = self.count("dynamics.max_bounces")?;
+        let gas = if pressure > 0.0 {
+            if switch.dimple_height <= 0.0 {
+                return Err(self.fail(
+                    "dynamics.gas_pressure",
+                    format!("{} Pa", num(pressure)),
+                    "0 (vacuum) when switch.dimple_height = 0: a flat plate landing on the dielectric squeezes the gas out through a gap closing as x^-3 (x^-1.84 with rarefaction): under Reynolds' squeeze film it never closes in finite time; give the dimples' height (theory 13.2)",
+                ));
+            }
+            let width = match (width, switch.electrode_area) {
+                (Some(w), _) => w,
+                (None, Some(a)) => a.sqrt(),
+                (None, None) => {
+                    return Err(SceneError::Missing {
+                        file: self.file(),
+                        key: "dynamics.plate_width".into(),
+                        explanation: "the squeeze film needs the plate's size: plate_width (and plate_length), or switch.electrode_area for a square plate".into(),
+                    })
+                }
+            };
+            Some(GasSpec {
+                pressure,
+                viscosity,
+                mean_free_path,
+                width,
+                length: length.unwrap_or(width),
+            })
+        } else {
+            None
+        };
+        Ok(Some(DynamicsSpec {
+            areal_mass,
+            resonance_frequency,
+            gas,
+            max_bounces,
+        }))
     }
 
     fn switch(&mut self, film_modulus: f64) -> Result<SwitchGeometrySpec, SceneError> {

@@ -111,6 +111,8 @@ fn run_inner(s: &SurfaceSpec) -> Result<SurfaceResult, ModelError> {
         warnings.extend(guards::surface_beyond_fit(c, share, deepest));
     }
     warnings.extend(guards::adhesion_yields(c)?);
+    // the scene's own notes (a key that overrides its height map's value)
+    warnings.extend(s.common.notes.iter().cloned());
     Ok(SurfaceResult {
         title: s.common.title.clone(),
         laws: Laws::of(c),

@@ -28,6 +28,7 @@ use switch_1d::{
     AccommodationCause, CycleOptions, CycleRun, Impact, ImpactFilm, PressurePoint, Switch,
     SwitchGeometry,
 };
+use switch_dynamics::{DynamicsOptions, SqueezeFilm};
 
 /// Which of K_s, U and E_I the scene gave and which were derived.
 #[derive(Debug, Clone, Serialize)]
@@ -208,6 +209,43 @@ pub struct CycleResult {
     pub hold_status: &'static str,
     /// The contact at the end of impact, d_e (null when not computed).
     pub end_of_impact: Option<ContactState>,
+    /// In time (`[dynamics]`): where the contact phase of the first impact began.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub impact: Option<switch_dynamics::ImpactState>,
+    /// In time: the number of bounces of the closure.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bounces: Option<usize>,
+    /// In time: each bounce's re-impact and its deepest separation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bounce_impacts: Option<Vec<switch_dynamics::Bounce>>,
+    /// In time: where the closure's energy went.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_ledger: Option<switch_dynamics::EnergyLedger>,
+    /// In time: the time from the voltage step to the capture (s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub capture_time: Option<f64>,
+    /// In time: the release with the voltage off (from rest at the pull-out's separation).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub release: Option<switch_dynamics::Release>,
+}
+
+/// The switch in time (theory 13).
+#[derive(Debug, Clone, Serialize)]
+pub struct DynamicsReport {
+    /// c'' at x = dimple_height (Pa s/m per electrode area; 0 in vacuum).
+    pub squeeze_film_coefficient_at_contact: f64,
+    /// The squeeze film's geometry factor beta(W/L) (0 in vacuum).
+    pub squeeze_film_geometry_factor: f64,
+    /// m'' (kg/m^2).
+    pub areal_mass: f64,
+    /// The natural frequency sqrt(K_s/m'')/(2 pi) (Hz).
+    pub natural_frequency: f64,
+    /// The gas pressure (Pa; 0: vacuum).
+    pub gas_pressure: f64,
+    /// The integration's relative tolerance (the accuracy mode's).
+    pub tolerance: f64,
+    /// The first closure's motion: time, displacement, velocity, contact pressure.
+    pub trace: Vec<switch_dynamics::TracePoint>,
 }
 
 impl CycleResult {
@@ -394,6 +432,10 @@ pub struct SwitchResult {
     /// whether another published model form changes the verdict.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub model_form: Option<crate::model_form::ModelFormReport>,
+    /// The switch in time (a `[dynamics]` section): the squeeze film at contact, the mass,
+    /// and the first closure's motion.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dynamics: Option<DynamicsReport>,
 }
 
 /// A switch scene's model, built once: the electrostatics, the rough surface of the
@@ -457,6 +499,27 @@ impl<'a> SwitchModel<'a> {
         })
     }
 
+    /// The plate of a `[dynamics]` scene: the switch, its spring and voltage, the mass and
+    /// the gas film (None for a quasi-static scene).
+    pub fn plate(&self) -> Result<Option<switch_dynamics::Plate>, ModelError> {
+        let Some(d) = self.spec.dynamics else {
+            return Ok(None);
+        };
+        let squeeze = d
+            .gas
+            .map(|g| SqueezeFilm::new(g.width, g.length, g.viscosity, g.mean_free_path, g.pressure))
+            .transpose()?;
+        let plate = switch_dynamics::Plate {
+            switch: self.sw,
+            k_s: self.es.k_s,
+            voltage: self.es.voltage,
+            areal_mass: d.areal_mass(self.es.k_s),
+            contact_area_fraction: self.spec.switch.contact_area_fraction,
+            squeeze,
+        };
+        Ok(Some(plate.validated()?))
+    }
+
     fn impact(&self) -> Impact {
         let s = self.spec;
         Impact {
@@ -498,13 +561,35 @@ impl<'a> SwitchModel<'a> {
         let gw = self.surface(false)?;
         let impact = self.impact();
         let options = self.options();
+        let plate = self.plate()?;
+        let mut records: Vec<switch_dynamics::DynamicCycle> = Vec::new();
         // the elastic comparison is independent of the cycles: both at once
         let (run, elastic) = contact_core::par::join(
             || {
                 progress.start(s.cycles as u64, "cycles");
-                let run = switch_1d::run_cycles(&gw, gw.virgin(), impact, options, &mut |cy| {
-                    progress.set(cy.cycle as u64)
-                });
+                let run = match (&plate, s.dynamics) {
+                    (Some(plate), Some(d)) => switch_dynamics::run_cycles(
+                        &gw,
+                        gw.virgin(),
+                        plate,
+                        options,
+                        DynamicsOptions {
+                            max_bounces: d.max_bounces,
+                            trace: s.common.points > 0,
+                            ..DynamicsOptions::for_target(options.precision.d_e)
+                        },
+                        &mut |k| progress.set(k as u64),
+                    )
+                    .map(|(run, rec)| {
+                        records = rec;
+                        run
+                    })
+                    .map_err(ModelError::from),
+                    _ => switch_1d::run_cycles(&gw, gw.virgin(), impact, options, &mut |cy| {
+                        progress.set(cy.cycle as u64)
+                    })
+                    .map_err(ModelError::from),
+                };
                 progress.finish();
                 run
             },
@@ -514,7 +599,25 @@ impl<'a> SwitchModel<'a> {
                     .transpose()
             },
         );
-        let run = run?;
+        let run = match run {
+            // under the gas the plate can stop short of a contact the vacuum drive reaches
+            Err(ModelError::Dynamics(switch_dynamics::DynamicsError::DoesNotClose {
+                time,
+                gap,
+            })) => {
+                result.closes = false;
+                result.warnings.push(Warning::note(
+                    guards::code::DOES_NOT_CLOSE,
+                    format!(
+                        "in time, the electrode turned back {} after the voltage step, {} short of the contact: the squeeze film and the spring stop it although U exceeds the dynamic pull-in voltage of the vacuum",
+                        guards::si(time, "s", 4),
+                        guards::si(gap, "m", 4)
+                    ),
+                ));
+                return Ok(result);
+            }
+            run => run?,
+        };
         // the cycles and the verdict stand on their own: a quantity computed beside them
         // that fails (the elastic comparison, a guard's check, a contact state) is absent,
         // with a warning saying which and why, instead of losing the run
@@ -534,6 +637,29 @@ impl<'a> SwitchModel<'a> {
             cy.hold_status = status;
             cy.end_of_impact = end;
         }
+        if let (Some(plate), Some(_)) = (&plate, s.dynamics) {
+            let mut trace = Vec::new();
+            for (cy, rec) in result.cycles.iter_mut().zip(records) {
+                cy.impact = Some(rec.impact);
+                cy.bounces = Some(rec.bounces.len());
+                cy.bounce_impacts = Some(rec.bounces);
+                cy.energy_ledger = Some(rec.energy_ledger);
+                cy.capture_time = Some(rec.capture_time);
+                cy.release = Some(rec.release);
+                if trace.is_empty() {
+                    trace = rec.trace;
+                }
+            }
+            result.dynamics = Some(DynamicsReport {
+                squeeze_film_coefficient_at_contact: plate.squeeze_coefficient_at_contact(),
+                squeeze_film_geometry_factor: plate.squeeze.map_or(0.0, |f| f.geometry_factor()),
+                areal_mass: plate.areal_mass,
+                natural_frequency: 1.0 / (2.0 * std::f64::consts::PI * plate.natural_time()),
+                gas_pressure: s.dynamics.and_then(|d| d.gas).map_or(0.0, |g| g.pressure),
+                tolerance: DynamicsOptions::for_target(options.precision.d_e).tolerance,
+                trace,
+            });
+        }
         result.warnings.extend(contact_warnings(&result));
         result.warnings.extend(guards::estimates_within_targets(
             result.accuracy,
@@ -545,6 +671,8 @@ impl<'a> SwitchModel<'a> {
                 .map(|c| (c.cycle, c.d_e_error, c.pull_out_pressure, c.pull_out_error)),
         ));
         result.warnings.extend(not_computed);
+        // the scene's own notes (a key that overrides its height map's value)
+        result.warnings.extend(s.common.notes.iter().cloned());
         result.validity = Validity::of(&result.warnings);
         Ok(result)
     }
@@ -766,6 +894,7 @@ impl<'a> SwitchModel<'a> {
             warnings: Vec::new(),
             scene: s.common.echo(),
             model_form: None,
+            dynamics: None,
         }
     }
 
@@ -965,6 +1094,12 @@ fn record(result: &mut SwitchResult, run: CycleRun<GwHistory>, impact: Impact) {
             hold: None,
             hold_status: "not_computed",
             end_of_impact: None,
+            impact: None,
+            bounces: None,
+            bounce_impacts: None,
+            energy_ledger: None,
+            capture_time: None,
+            release: None,
         })
         .collect();
     result.loading = run.loading;

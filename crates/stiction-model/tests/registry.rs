@@ -68,6 +68,16 @@ fn base(kind: Kind, key: &str) -> Scene {
         s.remove("switch.impact_energy");
         s.set_number("switch.k_s", 8.44e9).unwrap();
     }
+    if key.starts_with("dynamics.") {
+        // a [dynamics] section: drive B, a mass (one of the two), dimples under a gas
+        s.remove("switch.impact_energy");
+        s.set_number("switch.k_s", 8.44e9).unwrap();
+        s.set_number("switch.dimple_height", 0.3e-6).unwrap();
+        s.set_number("switch.electrode_area", 1e-8).unwrap();
+        if key != "dynamics.areal_mass" {
+            s.set_number("dynamics.resonance_frequency", 93e3).unwrap();
+        }
+    }
     if key == "switch.spring_constant" {
         s.remove("switch.impact_energy");
         s.set_number("switch.electrode_area", 1e-8).unwrap();
@@ -199,12 +209,17 @@ fn a_key_left_out_takes_the_registry_default_for_every_kind() {
             // keys are alternatives, each absent when another is given
             let mut s = if k.key.starts_with("contact.counter_")
                 || k.key.starts_with("surface.topography")
+                || k.key.starts_with("dynamics.")
             {
                 base(kind, k.key)
             } else {
                 Scene::paper(kind)
             };
             s.remove(k.key);
+            if k.key == "dynamics.resonance_frequency" {
+                // the electrode's mass is given one way or the other
+                s.set_number("dynamics.areal_mass", 0.0246).unwrap();
+            }
             let resolved = match Spec::new(&s, &registry) {
                 Ok(spec) => spec.common().resolved.clone(),
                 Err(e) => {

@@ -1,0 +1,118 @@
+//! Issue 44: the switch in time through the model library: the scene keys, the JSON
+//! contract, the refusals, and a result that does not depend on the accuracy mode.
+
+use stiction_model::keys::Kind;
+use stiction_model::laws::LawRegistry;
+use stiction_model::scene::Scene;
+use stiction_model::spec::SwitchSpec;
+use stiction_model::switch::{SwitchModel, SwitchResult};
+use stiction_model::Silent;
+
+/// The paper's switch in time: drive B with the K_s of its E_I = 0.5 J/m^2 at 1.2 V_PI, a 2 um
+/// electrode of 12.3 g/cm^3 (m'' = 0.0246 kg/m^2), dimples 0.3 um high on 20 % of a
+/// (100 um)^2 electrode.
+fn scene(accuracy: &str, gas: Option<f64>) -> Scene {
+    let mut s = Scene::paper(Kind::Switch);
+    s.remove("switch.impact_energy");
+    for (k, v) in [
+        ("switch.k_s", "8440183830.384662"),
+        ("switch.voltage", "57.888558186414984"),
+        ("switch.dimple_height", "0.3e-6"),
+        ("switch.contact_area_fraction", "0.2"),
+        ("switch.electrode_area", "1e-8"),
+        ("dynamics.areal_mass", "0.0246"),
+        ("accuracy", &format!("\"{accuracy}\"")),
+        ("points", "0"),
+        ("elastic_comparison", "false"),
+        ("contact_state", "\"none\""),
+        ("cycles", "3"),
+    ] {
+        s.set_text(k, v).unwrap();
+    }
+    if let Some(p) = gas {
+        s.set_number("dynamics.gas_pressure", p).unwrap();
+    }
+    s
+}
+
+fn run(s: &Scene) -> SwitchResult {
+    let spec = SwitchSpec::new(s, &LawRegistry::builtin()).unwrap();
+    SwitchModel::build(&spec).unwrap().run(&Silent).unwrap()
+}
+
+#[test]
+fn the_json_carries_the_impact_the_bounces_and_the_ledger() {
+    let r = run(&scene("fast", Some(101_325.0)));
+    let v = serde_json::to_value(&r).unwrap();
+    let c = v["dynamics"]["squeeze_film_coefficient_at_contact"]
+        .as_f64()
+        .unwrap();
+    // beta(1) mu_eff(h) W^2 / h^3 with Veijola's mu_eff at Kn = 68 nm / 0.3 um
+    let kn: f64 = 68e-9 / 0.3e-6;
+    let mu = 1.85e-5 / (1.0 + 9.638 * kn.powf(1.159));
+    let by_hand = switch_dynamics::geometry_factor(1.0) * mu * 1e-8 / 0.3e-6f64.powi(3);
+    assert!((c / by_hand - 1.0).abs() < 1e-12, "{c} vs {by_hand}");
+    for cy in v["cycles"].as_array().unwrap() {
+        for k in ["separation", "velocity", "energy", "flight_time"] {
+            assert!(cy["impact"][k].as_f64().unwrap() > 0.0, "impact.{k}");
+        }
+        assert!(cy["bounces"].is_u64());
+        let residual = cy["energy_ledger"]["residual"].as_f64().unwrap();
+        assert!(residual.abs() < 1e-5, "{residual}");
+        assert!(cy["energy_ledger"]["gas"].as_f64().unwrap() > 0.0);
+    }
+    // the gas took part of the energy the vacuum delivers
+    let vac = run(&scene("fast", None));
+    assert!(r.cycles[0].impact.unwrap().energy < vac.cycles[0].impact.unwrap().energy);
+    assert_eq!(
+        vac.dynamics
+            .as_ref()
+            .unwrap()
+            .squeeze_film_coefficient_at_contact,
+        0.0
+    );
+}
+
+/// The bounce count and the verdict are the same in every accuracy mode.
+#[test]
+fn bounces_and_verdict_do_not_depend_on_the_mode() {
+    for gas in [None, Some(101_325.0)] {
+        let runs: Vec<SwitchResult> = ["fast", "balanced", "accurate"]
+            .iter()
+            .map(|m| run(&scene(m, gas)))
+            .collect();
+        for r in &runs[1..] {
+            assert_eq!(r.stiction, runs[0].stiction);
+            for (a, b) in r.cycles.iter().zip(&runs[0].cycles) {
+                assert_eq!(a.bounces, b.bounces, "cycle {} gas {gas:?}", a.cycle);
+                assert_eq!(a.release.unwrap().opens, b.release.unwrap().opens);
+            }
+        }
+    }
+}
+
+#[test]
+fn refusals_name_their_keys() {
+    let registry = LawRegistry::builtin();
+    // the impact energy is a result of the integration
+    let mut s = Scene::paper(Kind::Switch);
+    s.set_number("dynamics.areal_mass", 0.0246).unwrap();
+    let e = SwitchSpec::new(&s, &registry).unwrap_err().to_string();
+    assert!(
+        e.contains("switch.impact_energy") && e.contains("[dynamics]"),
+        "{e}"
+    );
+    // gas without dimples never closes under Reynolds' squeeze film
+    let mut s = scene("fast", Some(101_325.0));
+    s.set_number("switch.dimple_height", 0.0).unwrap();
+    let e = SwitchSpec::new(&s, &registry).unwrap_err().to_string();
+    assert!(
+        e.contains("dynamics.gas_pressure") && e.contains("dimple_height"),
+        "{e}"
+    );
+    // one mass
+    let mut s = scene("fast", None);
+    s.set_number("dynamics.resonance_frequency", 1e5).unwrap();
+    let e = SwitchSpec::new(&s, &registry).unwrap_err().to_string();
+    assert!(e.contains("dynamics.resonance_frequency"), "{e}");
+}
