@@ -292,7 +292,7 @@ pub fn close<S: SurfaceLaw>(
     // state in SI between phases: displacement, velocity, gas and contact energies
     let (mut y, mut v, mut gas, mut contact) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let mut impacts: Vec<(ImpactState, f64, f64)> = Vec::new();
-    // the contact pressure, tabulated in panels of a quarter roughness scale to the
+    // the contact pressure, tabulated in panels of two roughness scales to the
     // integration's tolerance of the larger of the panel's pressure and the electrostatic
     // pressure at contact (per contact area); the approach table serves every re-impact on
     // the same history
@@ -378,7 +378,7 @@ pub fn close<S: SurfaceLaw>(
             tau,
             ec,
         };
-        let width = sigma;
+        let width = 2.0 * sigma;
         if !approach_table
             .as_ref()
             .is_some_and(|t| t.is_for(&hist, Path::Approach))
@@ -393,6 +393,7 @@ pub fn close<S: SurfaceLaw>(
                 hist.clone(),
                 Path::Approach,
                 if origin.is_finite() { origin } else { 0.0 },
+                reach,
                 width,
                 tol,
                 floor,
@@ -448,7 +449,8 @@ pub fn close<S: SurfaceLaw>(
         // -- contact, retraction from d_min: separation (a bounce) or capture
         let out = surface.reach(&hist, Path::Retract { from: d_min })?;
         let path = Path::Retract { from: d_min };
-        let retract = PressureTable::new(surface, hist.clone(), path, d_min, width, tol, floor);
+        let retract =
+            PressureTable::new(surface, hist.clone(), path, d_min, out, width, tol, floor);
         let zr = [z[0], z[1], z[2], z[3]];
         let end = ode::run(
             "contact (retraction)",

@@ -50,7 +50,8 @@ pub fn release<S: SurfaceLaw>(
         history.clone(),
         path,
         from,
-        0.25 * sigma,
+        out,
+        sigma,
         tolerance,
         floor,
     );

@@ -21,7 +21,9 @@ enum Panel {
 
 /// The surface's pressure on `path` with `history`, built lazily in panels of `width` where
 /// an evaluation falls: each panel's degree-8 polynomial through Chebyshev-Lobatto nodes is
-/// checked against the surface at the four Chebyshev-Gauss points of degree 4 and bisected
+/// checked against the surface at the four Chebyshev-Gauss points of degree 4 (the 13
+/// evaluations of a panel run in parallel; none at or above the path's reach, where the
+/// pressure is zero) and bisected
 /// until it meets them to `tol` of max(|p| there, `floor`); after 14 bisections (a
 /// kink: the deepest separation, where reloading turns into virgin loading) the surface is
 /// evaluated directly there. A contact phase asks for the pressure thousands of times within
@@ -31,6 +33,7 @@ pub(crate) struct PressureTable<'a, S: SurfaceLaw> {
     history: S::History,
     path: Path,
     origin: f64,
+    reach: f64,
     width: f64,
     tol: f64,
     floor: f64,
@@ -41,11 +44,13 @@ impl<'a, S: SurfaceLaw> PressureTable<'a, S> {
     /// A table on `path` with `history`, its panels `width` wide from `origin` (a kink of
     /// the pressure: the deepest separation of the history on approach, the excursion's
     /// extreme on a retraction), so that no panel straddles it.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         surface: &'a S,
         history: S::History,
         path: Path,
         origin: f64,
+        reach: f64,
         width: f64,
         tol: f64,
         floor: f64,
@@ -55,6 +60,7 @@ impl<'a, S: SurfaceLaw> PressureTable<'a, S> {
             history,
             path,
             origin,
+            reach,
             width,
             tol,
             floor,
@@ -67,12 +73,20 @@ impl<'a, S: SurfaceLaw> PressureTable<'a, S> {
         self.path == path && &self.history == history
     }
 
+    /// The surface's pressure; zero at and above the path's reach, where the law says it
+    /// is (`SurfaceLaw::reach`), without evaluating it.
     fn exact(&self, d: f64) -> Result<f64, LawError> {
+        if d >= self.reach {
+            return Ok(0.0);
+        }
         self.surface.pressure(d, &self.history, self.path)
     }
 
     /// The pressure at `d` (Pa).
     pub fn pressure(&self, d: f64) -> Result<f64, LawError> {
+        if d >= self.reach {
+            return Ok(0.0);
+        }
         let k = ((d - self.origin) / self.width).floor();
         if !k.is_finite() || k.abs() > 1e15 {
             return self.exact(d);
@@ -100,21 +114,29 @@ impl<'a, S: SurfaceLaw> PressureTable<'a, S> {
     fn build(&self, lo: f64, hi: f64, depth: u32) -> Result<Panel, LawError> {
         let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
         let pi = std::f64::consts::PI;
-        let mut points = Vec::with_capacity(NODES);
-        for j in 0..NODES {
-            let x = mid + half * (pi * j as f64 / (NODES - 1) as f64).cos();
-            points.push((x, self.exact(x)?));
-        }
-        let poly = Interpolant::new(&points);
-        let mut fits = true;
-        for i in 0..4 {
-            let x = mid + half * (pi * (2 * i + 1) as f64 / 8.0).cos();
-            let p = self.exact(x)?;
-            if (poly.eval(x) - p).abs() > self.tol * p.abs().max(self.floor) {
-                fits = false;
-                break;
+        // the nodes, then the four check points: evaluated together, in parallel
+        let mut xs: Vec<f64> = (0..NODES)
+            .map(|j| mid + half * (pi * j as f64 / (NODES - 1) as f64).cos())
+            .collect();
+        xs.extend((0..4).map(|i| mid + half * (pi * (2 * i + 1) as f64 / 8.0).cos()));
+        let (surface, history, path, reach) = (self.surface, &self.history, self.path, self.reach);
+        let values = contact_core::par::map(&xs, |&x| {
+            if x >= reach {
+                Ok(0.0)
+            } else {
+                surface.pressure(x, history, path)
             }
-        }
+        })?;
+        let points: Vec<(f64, f64)> = xs[..NODES]
+            .iter()
+            .copied()
+            .zip(values[..NODES].iter().copied())
+            .collect();
+        let poly = Interpolant::new(&points);
+        let fits = xs[NODES..]
+            .iter()
+            .zip(&values[NODES..])
+            .all(|(&x, &p)| (poly.eval(x) - p).abs() <= self.tol * p.abs().max(self.floor));
         if fits {
             return Ok(Panel::Leaf(poly));
         }
