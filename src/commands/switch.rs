@@ -484,6 +484,19 @@ impl Render for SwitchResult {
     fn table(&self) -> String {
         let mut s = table_header(self);
         if !self.closes {
+            if self
+                .warnings
+                .iter()
+                .any(|w| w.code == stiction_model::guards::code::DOES_NOT_CLOSE)
+            {
+                // in time, the gas and the spring stopped it (warning does_not_close)
+                let _ = writeln!(
+                    s,
+                    "\nverdict: the switch does not close: in time the squeeze film and the spring stop the electrode short of the contact at U = {:.4} V (above the vacuum's dynamic pull-in voltage {:.4} V); no stiction",
+                    self.voltage, self.dynamic_pull_in_voltage
+                );
+                return s;
+            }
             let _ = writeln!(
                 s,
                 "\nverdict: the switch does not close: U = {:.4} V is below the dynamic pull-in voltage {:.4} V (released from rest under a step voltage, the electrode meets an energy barrier before contact); no stiction",

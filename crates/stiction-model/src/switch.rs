@@ -609,7 +609,7 @@ impl<'a> SwitchModel<'a> {
                 result.warnings.push(Warning::note(
                     guards::code::DOES_NOT_CLOSE,
                     format!(
-                        "in time, the electrode turned back {} after the voltage step, {} short of the contact: the squeeze film and the spring stop it although U exceeds the dynamic pull-in voltage of the vacuum",
+                        "in time, the electrode stopped {} after the voltage step, {} short of the contact: the squeeze film and the spring stop it although U exceeds the dynamic pull-in voltage of the vacuum",
                         guards::si(time, "s", 4),
                         guards::si(gap, "m", 4)
                     ),

@@ -116,3 +116,19 @@ fn refusals_name_their_keys() {
     let e = SwitchSpec::new(&s, &registry).unwrap_err().to_string();
     assert!(e.contains("dynamics.resonance_frequency"), "{e}");
 }
+
+/// Between the vacuum's dynamic pull-in and the static pull-in voltage, the squeeze film
+/// stops the electrode at its equilibrium short of the contact: the switch does not close,
+/// said by a note, not an error; in vacuum the same voltage closes it.
+#[test]
+fn the_gas_can_stop_a_switch_the_vacuum_closes() {
+    let mut s = scene("fast", Some(101_325.0));
+    s.set_text("switch.voltage", "47.0").unwrap();
+    let r = run(&s);
+    assert!(r.voltage > r.dynamic_pull_in_voltage && r.voltage < r.v_pull_in);
+    assert!(!r.closes && !r.stiction && r.cycles.is_empty());
+    assert!(r.warnings.iter().any(|w| w.code == "does_not_close"));
+    let mut s = scene("fast", None);
+    s.set_text("switch.voltage", "47.0").unwrap();
+    assert!(run(&s).closes);
+}

@@ -34,9 +34,10 @@ pub enum DynamicsError {
         /// What was expected.
         what: &'static str,
     },
-    /// The plate turned back before touching: the voltage does not close the switch
+    /// The plate turned back before touching, or (below the static pull-in voltage) crept
+    /// to its equilibrium short of the contact: the voltage does not close the switch
     /// against the spring and the gas.
-    #[error("the electrode turned back {time:e} s after the voltage step, {gap:e} m above the contact: the voltage does not close the switch against the spring and the gas")]
+    #[error("the electrode stopped {gap:e} m short of the contact {time:e} s after the voltage step (it turned back, or rests at its equilibrium below the static pull-in voltage): the voltage does not close the switch against the spring and the gas")]
     DoesNotClose {
         /// When it turned (s).
         time: f64,

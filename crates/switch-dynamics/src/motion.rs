@@ -345,6 +345,17 @@ pub fn close<S: SurfaceLaw>(
                     gap: (q_contact - z[0]) * s,
                 })
             }
+            // below the static pull-in voltage an overdamped plate creeps to its equilibrium
+            // short of the contact without ever turning back: it does not close
+            End::Timeout { t, y: z }
+                if impacts.is_empty()
+                    && plate.voltage < plate.switch.pull_in_voltage(plate.k_s) =>
+            {
+                return Err(DynamicsError::DoesNotClose {
+                    time: time + t * t0,
+                    gap: (q_contact - z[0]) * s,
+                })
+            }
             End::Timeout { .. } => {
                 return Err(DynamicsError::Timeout {
                     phase: "flight",
