@@ -91,6 +91,40 @@ fn bounces_and_verdict_do_not_depend_on_the_mode() {
     }
 }
 
+/// Each cycle's d_e and pull-out in fast and balanced mode lie within their reported
+/// error estimates of the accurate run's (in vacuum, with bounces, and in air): the
+/// estimates carry the integration's tolerance, the pressure evaluations' own errors and
+/// the table's misses over the approach, the energy residual, and the history's error.
+#[test]
+fn the_error_estimates_cover_the_difference_to_a_tighter_mode() {
+    for gas in [None, Some(101_325.0)] {
+        let accurate = run(&scene("accurate", gas));
+        for mode in ["fast", "balanced"] {
+            let r = run(&scene(mode, gas));
+            for (a, b) in r.cycles.iter().zip(&accurate.cycles) {
+                let (dd, pd) = (
+                    (a.d_e - b.d_e).abs(),
+                    (a.pull_out_pressure - b.pull_out_pressure).abs(),
+                );
+                let (de, pe) = (
+                    a.d_e_error + b.d_e_error,
+                    a.pull_out_error + b.pull_out_error,
+                );
+                assert!(
+                    dd <= de,
+                    "{mode} gas {gas:?} cycle {}: d_e {dd:e} > {de:e}",
+                    a.cycle
+                );
+                assert!(
+                    pd <= pe,
+                    "{mode} gas {gas:?} cycle {}: pull-out {pd:e} > {pe:e}",
+                    a.cycle
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn refusals_name_their_keys() {
     let registry = LawRegistry::builtin();

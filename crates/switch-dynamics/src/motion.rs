@@ -209,6 +209,11 @@ pub struct Closure<H> {
     pub d_e: f64,
     /// The deepest separation of all impacts (m).
     pub deepest: f64,
+    /// The estimated error of `deepest` (m): the integration's tolerance on the roughness
+    /// scale, plus the error of the work the contact did on the way in (the pressure
+    /// evaluations' own estimates and the table's misses, integrated from the deepest
+    /// separation to the reach, and the closure's energy residual) over the pressure there.
+    pub deepest_error: f64,
     /// The impacts after bounces.
     pub bounces: Vec<Bounce>,
     /// The surface's history after every impact.
@@ -276,6 +281,20 @@ pub fn close<S: SurfaceLaw>(
     plate: &Plate,
     options: &DynamicsOptions,
 ) -> Result<Closure<S::History>, DynamicsError> {
+    close_with(surface, history, plate, options, &mut None)
+}
+
+/// [`close`] with the approach table of an earlier closure: the last impact of a closure
+/// leaves the history the next closure's first impact approaches (a bounce's re-impact
+/// approaches the same history), so the table of the surface's pressure on that approach
+/// carries over from cycle to cycle while the history is unchanged.
+pub(crate) fn close_with<'a, S: SurfaceLaw>(
+    surface: &'a S,
+    history: &S::History,
+    plate: &Plate,
+    options: &DynamicsOptions,
+    approach_table: &mut Option<PressureTable<'a, S>>,
+) -> Result<Closure<S::History>, DynamicsError> {
     let plate = plate.validated()?;
     let s = plate.travel();
     let m = plate.areal_mass;
@@ -291,13 +310,13 @@ pub fn close<S: SurfaceLaw>(
     let mut time = 0.0;
     // state in SI between phases: displacement, velocity, gas and contact energies
     let (mut y, mut v, mut gas, mut contact) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    let mut impacts: Vec<(ImpactState, f64, f64)> = Vec::new();
+    // each impact: its state, deepest separation, time, and that separation's error (m)
+    let mut impacts: Vec<(ImpactState, f64, f64, f64)> = Vec::new();
     // the contact pressure, tabulated in panels of two roughness scales to the
     // integration's tolerance of the larger of the panel's pressure and the electrostatic
     // pressure at contact (per contact area); the approach table serves every re-impact on
     // the same history
     let floor = plate.electrostatic(plate.switch.dimple_height()) / phi;
-    let mut approach_table: Option<PressureTable<S>> = None;
     let mut flight_start = 0.0;
     loop {
         // -- flight: scaled q = y/s, w = v t0/s, energies / (K_s s^2)
@@ -369,6 +388,13 @@ pub fn close<S: SurfaceLaw>(
         v = z[1] * s / t0;
         gas = z[2] * e0;
         contact = z[3] * e0;
+        let (y_at_impact, gas_at_impact) = (y, gas);
+        // the integration's energy residual since the voltage step, at the impact
+        let residual_at_impact = plate.electrostatic_work(plate.switch.d0() - y)
+            - 0.5 * plate.k_s * y * y
+            - 0.5 * m * v * v
+            - gas
+            - contact;
         let impact = ImpactState {
             separation: reach,
             velocity: v,
@@ -392,14 +418,14 @@ pub fn close<S: SurfaceLaw>(
         let width = 2.0 * sigma;
         if !approach_table
             .as_ref()
-            .is_some_and(|t| t.is_for(&hist, Path::Approach))
+            .is_some_and(|t| t.is_for(&hist, Path::Approach, width, tol, floor))
         {
             let origin = surface
                 .kinks(&hist)
                 .into_iter()
                 .filter(|k| k.is_finite())
                 .fold(f64::INFINITY, f64::min);
-            approach_table = Some(PressureTable::new(
+            *approach_table = Some(PressureTable::new(
                 surface,
                 hist.clone(),
                 Path::Approach,
@@ -455,7 +481,32 @@ pub fn close<S: SurfaceLaw>(
         time += t * tau;
         phase_start.set(time);
         let d_min = z[0] * sigma;
-        impacts.push((impact, d_min, time));
+        // the error of d_min. The turning point closes the energy balance of the contact
+        // phase, f(d) = E_0 + [W(y) - W(y_0)] - K_s [y^2 - y_0^2]/2 - gas - phi int_d^reach p
+        // = 0 (E_0, y_0 at the impact, gas the film's work in this phase): evaluated with
+        // the table's exact work at the integrated d_min, f over its slope (the net force
+        // phi p - p_es + K_s y) is a Newton step to the balance's own root, the
+        // integration's error in d_min; to it add the table's work error (its evaluations'
+        // estimates and misses) over the pressure, the energy residual the impact arrived
+        // with (every earlier flight, impact and bounce) over the same slope, and the
+        // integration's tolerance on the roughness scale.
+        let p_min = approach.pressure(d_min)?;
+        let work_error = approach.error_integral(d_min, reach);
+        let y_turn = s - d_min;
+        let v_turn = z[1] * vel;
+        let balance = impact.energy + plate.electrostatic_work(plate.switch.d0() - y_turn)
+            - plate.electrostatic_work(plate.switch.d0() - y_at_impact)
+            - 0.5 * plate.k_s * (y_turn * y_turn - y_at_impact * y_at_impact)
+            - 0.5 * m * v_turn * v_turn
+            - (z[2] * ec - gas_at_impact)
+            - phi * approach.work(d_min, reach)?;
+        let slope = (phi * p_min - plate.electrostatic(plate.switch.d0() - y_turn)
+            + plate.k_s * y_turn)
+            .max(f64::MIN_POSITIVE);
+        let d_min_error = tol * sigma
+            + work_error / p_min.max(f64::MIN_POSITIVE)
+            + (balance.abs() + residual_at_impact.abs()) / slope;
+        impacts.push((impact, d_min, time, d_min_error));
         hist = surface.load(&hist, d_min);
         // -- contact, retraction from d_min: separation (a bounce) or capture
         let out = surface.reach(&hist, Path::Retract { from: d_min })?;
@@ -504,9 +555,13 @@ pub fn close<S: SurfaceLaw>(
         contact = z[3] * ec;
         if which == 0 {
             // captured: a turning point in contact
-            let (first, d_e, _) = impacts[0];
-            let deepest = impacts.iter().map(|i| i.1).fold(f64::INFINITY, f64::min);
-            let stored = stored_energy(surface, &hist, d, d_min, out)? * phi;
+            let (first, d_e, ..) = impacts[0];
+            let deepest_impact = impacts
+                .iter()
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .expect("an impact");
+            let (deepest, deepest_error) = (deepest_impact.1, deepest_impact.3);
+            let stored = stored_energy(&retract, d, out)? * phi;
             let work_in = plate.electrostatic_work(plate.switch.d0() - y);
             let spring = 0.5 * plate.k_s * y * y;
             let kinetic = 0.5 * m * v * v;
@@ -522,12 +577,13 @@ pub fn close<S: SurfaceLaw>(
             };
             let bounces = impacts[1..]
                 .iter()
-                .map(|&(impact, d_e, time)| Bounce { impact, d_e, time })
+                .map(|&(impact, d_e, time, ..)| Bounce { impact, d_e, time })
                 .collect();
             return Ok(Closure {
                 impact: first,
                 d_e,
                 deepest,
+                deepest_error,
                 bounces,
                 history: hist,
                 capture_time: time,
@@ -546,13 +602,11 @@ pub fn close<S: SurfaceLaw>(
 }
 
 /// The elastic energy the contact gives back unloading from `d` to `out` on the retraction
-/// from `from` (J/m^2 per contact area): the integral of its pressure, Gauss-Legendre on 32
-/// panels (only the compressive part counts: the tensile well is the adhesion's).
+/// `table` holds (J/m^2 per contact area): the integral of its pressure, Gauss-Legendre on
+/// 32 panels (only the compressive part counts: the tensile well is the adhesion's).
 fn stored_energy<S: SurfaceLaw>(
-    surface: &S,
-    history: &S::History,
+    table: &PressureTable<S>,
     d: f64,
-    from: f64,
     out: f64,
 ) -> Result<f64, LawError> {
     if !(out > d) {
@@ -565,7 +619,7 @@ fn stored_energy<S: SurfaceLaw>(
     for k in 0..n {
         let (a, b) = (d + h * k as f64, d + h * (k + 1) as f64);
         for (x, w) in gl.mapped(a, b) {
-            let p = surface.pressure(x, history, Path::Retract { from })?;
+            let p = table.pressure(x)?;
             total += w * p.max(0.0);
         }
     }

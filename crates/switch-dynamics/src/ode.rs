@@ -2,7 +2,7 @@
 //! control) on a small state, stopped at the first wanted crossing of a threshold.
 
 use crate::DynamicsError;
-use diffsol::{FaerMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector};
+use diffsol::{NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector};
 use std::cell::RefCell;
 
 /// A threshold on one state component: the phase ends when `component` crosses `level`
@@ -57,7 +57,7 @@ where
     let start = y0.to_vec();
     let levels: Vec<(usize, f64)> = thresholds.iter().map(|t| (t.component, t.level)).collect();
     let fail = |message: String| DynamicsError::Integrator { phase, message };
-    let problem = OdeBuilder::<FaerMat<f64>>::new()
+    let problem = OdeBuilder::<NalgebraMat<f64>>::new()
         .rtol(tol)
         .atol(vec![tol; n])
         .h0(1e-3)

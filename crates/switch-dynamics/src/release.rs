@@ -51,7 +51,7 @@ pub fn release<S: SurfaceLaw>(
         path,
         from,
         out,
-        sigma,
+        2.0 * sigma,
         tolerance,
         floor,
     );
