@@ -1584,8 +1584,9 @@ const HISTORY_STEP: f64 = 1e-3;
 ///   pressures' estimates over the step.
 ///
 /// A cycle that repeats the one before (the same history to start from) repeats its
-/// estimates.
-fn carry_history_errors<S: SurfaceLaw>(
+/// estimates. `start` is the history the first cycle started from. Public for runners
+/// that find each cycle's d_e otherwise (the switch in time) and carry the errors alike.
+pub fn carry_history_errors<S: SurfaceLaw>(
     surface: &S,
     start: &S::History,
     cycles: &mut [Cycle<S::History>],

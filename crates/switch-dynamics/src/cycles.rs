@@ -1,13 +1,15 @@
 //! Cycles of the switch in time: each closure integrated, the surface's history carried
 //! from impact to impact, the pull-out judged as the quasi-static runner does.
 
-use crate::motion::{close, Bounce, DynamicsOptions, EnergyLedger, ImpactState, Plate, TracePoint};
+use crate::motion::{
+    close_with, Bounce, DynamicsOptions, EnergyLedger, ImpactState, Plate, TracePoint,
+};
 use crate::release::{release, Release};
 use crate::DynamicsError;
 use contact_core::{Path, SurfaceLaw};
 use switch_1d::{
-    unload, AccommodationCause, Cycle, CycleOptions, CycleRun, EndOfImpact, Impact, ImpactFilm,
-    PressurePoint,
+    carry_history_errors, unload, AccommodationCause, Cycle, CycleOptions, CycleRun, EndOfImpact,
+    Impact, ImpactFilm, PressurePoint,
 };
 
 /// What the time integration adds to a cycle.
@@ -55,15 +57,19 @@ pub fn run_cycles<S: SurfaceLaw>(
         restoring_pressure: restoring,
     };
     let tol = options.accommodation_tolerance;
+    let start = history.clone();
     let mut hist = history;
     let mut cycles: Vec<Cycle<S::History>> = Vec::new();
     let mut records = Vec::new();
     let mut accommodated_after = None;
     let mut accommodation_cause = None;
     let mut loading = Vec::new();
+    // the approach table the last closure's bounces used: the next closure's first impact
+    // approaches the same history
+    let mut approach_table = None;
     for k in 1..=options.cycles {
         let scale = surface.length_scales(&hist)?.roughness;
-        let closure = close(
+        let closure = close_with(
             surface,
             &hist,
             &plate,
@@ -71,6 +77,7 @@ pub fn run_cycles<S: SurfaceLaw>(
                 trace: dynamics.trace && k == 1,
                 ..dynamics
             },
+            &mut approach_table,
         )?;
         let d_e = closure.deepest;
         let pressure = surface.pressure(d_e, &hist, Path::Approach)?;
@@ -126,7 +133,7 @@ pub fn run_cycles<S: SurfaceLaw>(
             cycle: k,
             end: EndOfImpact {
                 d_e,
-                error: dynamics.tolerance * scale,
+                error: closure.deepest_error,
                 pressure,
             },
             history: new_hist.clone(),
@@ -150,6 +157,9 @@ pub fn run_cycles<S: SurfaceLaw>(
             break;
         }
     }
+    // each d_e and pull-out was found on the history the cycles before left, itself known
+    // to its estimate: carried as the quasi-static runner does (docs/theory.md 6.6)
+    carry_history_errors(surface, &start, &mut cycles)?;
     let largest_pull_out = cycles
         .iter()
         .map(|c| c.unloading.pull_out_pressure)

@@ -79,6 +79,27 @@ impl Plate {
         0.5 * g.epsilon_0 * self.voltage * self.voltage / (gap * gap)
     }
 
+    /// Whether the plate at air gap `x`, moving at `v`, is at rest to `within` (m): the
+    /// distance it can still travel, (|F| + c''(x) |v|)/kappa + |v| sqrt(m''/kappa) (the
+    /// creep the static force F and the film's drag leave, and where its kinetic energy
+    /// would carry it against the restoring stiffness kappa), is below it. Never at rest
+    /// where kappa <= 0 (no stable equilibrium).
+    pub(crate) fn at_rest(&self, x: f64, v: f64, force: f64, kappa: f64, within: f64) -> bool {
+        if !(kappa > 0.0) {
+            return false;
+        }
+        let creep = (force.abs() + self.damping(x) * v.abs()) / kappa;
+        let coast = v.abs() * (self.areal_mass / kappa).sqrt();
+        creep + coast <= within
+    }
+
+    /// d(p_es)/dx (Pa/m, negative): the electrostatic pressure's slope in the air gap.
+    pub(crate) fn electrostatic_slope(&self, x: f64) -> f64 {
+        let g = self.switch.geometry();
+        let gap = x + g.t_d / g.epsilon_r;
+        -g.epsilon_0 * self.voltage * self.voltage / (gap * gap * gap)
+    }
+
     /// The electrostatic work per electrode area (J/m^2) from the open position to air gap `x`.
     pub fn electrostatic_work(&self, x: f64) -> f64 {
         let g = self.switch.geometry();
@@ -209,6 +230,11 @@ pub struct Closure<H> {
     pub d_e: f64,
     /// The deepest separation of all impacts (m).
     pub deepest: f64,
+    /// The estimated error of `deepest` (m): the integration's tolerance on the roughness
+    /// scale, plus the error of the work the contact did on the way in (the pressure
+    /// evaluations' own estimates and the table's misses, integrated from the deepest
+    /// separation to the reach, and the closure's energy residual) over the pressure there.
+    pub deepest_error: f64,
     /// The impacts after bounces.
     pub bounces: Vec<Bounce>,
     /// The surface's history after every impact.
@@ -262,6 +288,29 @@ fn contact_rhs<'a, S: SurfaceLaw>(
     }
 }
 
+/// Whether the plate in a contact phase (scaled state `z`, pressure from `table`) is at
+/// rest to the integration's tolerance on the roughness scale: the static force
+/// p_es - K_s y - phi p against the stiffness K_s - |dp_es/dx| + phi |dp/dd|.
+fn settled_in_contact<S: SurfaceLaw>(
+    table: &PressureTable<S>,
+    plate: &Plate,
+    k: Scales,
+    z: &[f64],
+    tol: f64,
+) -> bool {
+    let d = z[0] * k.sigma;
+    let vv = z[1] * k.vel;
+    let yy = k.s - d;
+    let x = plate.switch.d0() - yy;
+    let step = 1e-3 * k.sigma;
+    let (Ok(p), Ok(p_above)) = (table.pressure(d), table.pressure(d + step)) else {
+        return false;
+    };
+    let force = plate.electrostatic(x) - plate.k_s * yy - k.phi * p;
+    let kappa = plate.k_s + plate.electrostatic_slope(x) + k.phi * ((p_above - p) / step).abs();
+    plate.at_rest(x, vv, force, kappa, tol * k.sigma)
+}
+
 /// Closes the switch from rest at the open position: the flight under the voltage step, the
 /// first impact on `surface` with `history`, each bounce (separation on the retraction,
 /// flight, re-impact on the reloading path with the history every earlier impact left), up
@@ -275,6 +324,20 @@ pub fn close<S: SurfaceLaw>(
     history: &S::History,
     plate: &Plate,
     options: &DynamicsOptions,
+) -> Result<Closure<S::History>, DynamicsError> {
+    close_with(surface, history, plate, options, &mut None)
+}
+
+/// [`close`] with the approach table of an earlier closure: the last impact of a closure
+/// leaves the history the next closure's first impact approaches (a bounce's re-impact
+/// approaches the same history), so the table of the surface's pressure on that approach
+/// carries over from cycle to cycle while the history is unchanged.
+pub(crate) fn close_with<'a, S: SurfaceLaw>(
+    surface: &'a S,
+    history: &S::History,
+    plate: &Plate,
+    options: &DynamicsOptions,
+    approach_table: &mut Option<PressureTable<'a, S>>,
 ) -> Result<Closure<S::History>, DynamicsError> {
     let plate = plate.validated()?;
     let s = plate.travel();
@@ -291,13 +354,13 @@ pub fn close<S: SurfaceLaw>(
     let mut time = 0.0;
     // state in SI between phases: displacement, velocity, gas and contact energies
     let (mut y, mut v, mut gas, mut contact) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    let mut impacts: Vec<(ImpactState, f64, f64)> = Vec::new();
+    // each impact: its state, deepest separation, time, and that separation's error (m)
+    let mut impacts: Vec<(ImpactState, f64, f64, f64)> = Vec::new();
     // the contact pressure, tabulated in panels of two roughness scales to the
     // integration's tolerance of the larger of the panel's pressure and the electrostatic
     // pressure at contact (per contact area); the approach table serves every re-impact on
     // the same history
     let floor = plate.electrostatic(plate.switch.dimple_height()) / phi;
-    let mut approach_table: Option<PressureTable<S>> = None;
     let mut flight_start = 0.0;
     loop {
         // -- flight: scaled q = y/s, w = v t0/s, energies / (K_s s^2)
@@ -336,10 +399,28 @@ pub fn close<S: SurfaceLaw>(
                 })
             }
         };
-        let end = ode::run("flight", rhs, &thresholds, &z0, limit_t0, tol, &mut on_step)?;
+        // an overdamped plate creeping into an equilibrium short of the contact has come to
+        // rest there (the film would take it there in infinite time)
+        let settled = |z: &[f64]| {
+            let (yy, vv) = (z[0] * s, z[1] * s / t0);
+            let x = plate.switch.d0() - yy;
+            let force = plate.electrostatic(x) - plate.k_s * yy;
+            let kappa = plate.k_s + plate.electrostatic_slope(x);
+            plate.at_rest(x, vv, force, kappa, tol * s)
+        };
+        let end = ode::run(
+            "flight",
+            rhs,
+            &thresholds,
+            &z0,
+            limit_t0,
+            tol,
+            &mut on_step,
+            &settled,
+        )?;
         let (t, z) = match end {
             End::Crossed { t, y, which: 0 } => (t, y),
-            End::Crossed { t, y: z, .. } => {
+            End::Crossed { t, y: z, .. } | End::Settled { t, y: z } => {
                 return Err(DynamicsError::DoesNotClose {
                     time: time + t * t0,
                     gap: (q_contact - z[0]) * s,
@@ -369,6 +450,13 @@ pub fn close<S: SurfaceLaw>(
         v = z[1] * s / t0;
         gas = z[2] * e0;
         contact = z[3] * e0;
+        let (y_at_impact, gas_at_impact) = (y, gas);
+        // the integration's energy residual since the voltage step, at the impact
+        let residual_at_impact = plate.electrostatic_work(plate.switch.d0() - y)
+            - 0.5 * plate.k_s * y * y
+            - 0.5 * m * v * v
+            - gas
+            - contact;
         let impact = ImpactState {
             separation: reach,
             velocity: v,
@@ -392,14 +480,14 @@ pub fn close<S: SurfaceLaw>(
         let width = 2.0 * sigma;
         if !approach_table
             .as_ref()
-            .is_some_and(|t| t.is_for(&hist, Path::Approach))
+            .is_some_and(|t| t.is_for(&hist, Path::Approach, width, tol, floor))
         {
             let origin = surface
                 .kinks(&hist)
                 .into_iter()
                 .filter(|k| k.is_finite())
                 .fold(f64::INFINITY, f64::min);
-            approach_table = Some(PressureTable::new(
+            *approach_table = Some(PressureTable::new(
                 surface,
                 hist.clone(),
                 Path::Approach,
@@ -441,9 +529,16 @@ pub fn close<S: SurfaceLaw>(
             limit,
             tol,
             &mut |st| on_contact(st, approach),
+            &|z: &[f64]| settled_in_contact(approach, &plate, scales, z, tol),
         )?;
+        // a plate that crept into its equilibrium in the contact is captured there
+        let mut at_rest = false;
         let (t, z) = match end {
             End::Crossed { t, y, .. } => (t, y),
+            End::Settled { t, y } => {
+                at_rest = true;
+                (t, y)
+            }
             End::Timeout { .. } => {
                 return Err(DynamicsError::Timeout {
                     phase: "contact (approach)",
@@ -455,7 +550,50 @@ pub fn close<S: SurfaceLaw>(
         time += t * tau;
         phase_start.set(time);
         let d_min = z[0] * sigma;
-        impacts.push((impact, d_min, time));
+        // the error of d_min. The turning point closes the energy balance of the contact
+        // phase, f(d) = E_0 + [W(y) - W(y_0)] - K_s [y^2 - y_0^2]/2 - gas - phi int_d^reach p
+        // = 0 (E_0, y_0 at the impact, gas the film's work in this phase), evaluated with
+        // the table's exact work at the integrated d_min: what it misses is the
+        // integration's energy error in this phase. With the table's work error (its
+        // evaluations' estimates and misses) and the residual the impact arrived with
+        // (every earlier flight, impact and bounce), that energy error dE moves the turning
+        // point by the root of kappa x^2/2 + F x = dE: F the net force there (phi p - p_es
+        // + K_s y), kappa the contact's stiffness phi |dp/dd| (F alone where the balance
+        // decides, a quadratic well where the plate creeps to rest at F = 0 under a gas
+        // film). Plus the integration's tolerance on the roughness scale.
+        let p_min = approach.pressure(d_min)?;
+        let step = 1e-3 * sigma;
+        let kappa = phi * ((approach.pressure(d_min + step)? - p_min) / step).abs();
+        let y_turn = s - d_min;
+        let v_turn = z[1] * vel;
+        let balance = impact.energy + plate.electrostatic_work(plate.switch.d0() - y_turn)
+            - plate.electrostatic_work(plate.switch.d0() - y_at_impact)
+            - 0.5 * plate.k_s * (y_turn * y_turn - y_at_impact * y_at_impact)
+            - 0.5 * m * v_turn * v_turn
+            - (z[2] * ec - gas_at_impact)
+            - phi * approach.work(d_min, reach)?;
+        let energy_error =
+            balance.abs() + residual_at_impact.abs() + phi * approach.error_integral(d_min, reach);
+        let force = (phi * p_min - plate.electrostatic(plate.switch.d0() - y_turn)
+            + plate.k_s * y_turn)
+            .abs();
+        let shift = if kappa > 0.0 {
+            2.0 * energy_error / (force + (force * force + 2.0 * kappa * energy_error).sqrt())
+        } else {
+            energy_error / force.max(f64::MIN_POSITIVE)
+        };
+        // a plate that crept to rest is where the forces balance, whatever energy the film
+        // took: the error of the pressure there (the table's, per contact area, over the
+        // restoring stiffness) moves it, and the creep left (below the tolerance)
+        let d_min_error = if at_rest {
+            let pressure_error = approach.error_integral(d_min, d_min + step) / step;
+            let stiffness =
+                plate.k_s + plate.electrostatic_slope(plate.switch.d0() - y_turn) + kappa;
+            tol * sigma + phi * pressure_error / stiffness.max(f64::MIN_POSITIVE)
+        } else {
+            tol * sigma + shift
+        };
+        impacts.push((impact, d_min, time, d_min_error));
         hist = surface.load(&hist, d_min);
         // -- contact, retraction from d_min: separation (a bounce) or capture
         let out = surface.reach(&hist, Path::Retract { from: d_min })?;
@@ -463,31 +601,42 @@ pub fn close<S: SurfaceLaw>(
         let retract =
             PressureTable::new(surface, hist.clone(), path, d_min, out, width, tol, floor);
         let zr = [z[0], z[1], z[2], z[3]];
-        let end = ode::run(
-            "contact (retraction)",
-            contact_rhs(&retract, &plate, scales),
-            &[
-                Threshold {
-                    component: 1,
-                    level: 0.0,
-                    rising: true,
-                },
-                Threshold {
-                    component: 0,
-                    level: out / sigma,
-                    rising: true,
-                },
-            ],
-            &zr,
-            limit,
-            tol,
-            &mut |st| on_contact(st, &retract),
-        )?;
+        let end = if at_rest {
+            End::Crossed {
+                t: 0.0,
+                y: zr.to_vec(),
+                which: 0,
+            }
+        } else {
+            ode::run(
+                "contact (retraction)",
+                contact_rhs(&retract, &plate, scales),
+                &[
+                    Threshold {
+                        component: 1,
+                        level: 0.0,
+                        rising: true,
+                    },
+                    Threshold {
+                        component: 0,
+                        level: out / sigma,
+                        rising: true,
+                    },
+                ],
+                &zr,
+                limit,
+                tol,
+                &mut |st| on_contact(st, &retract),
+                &|z: &[f64]| settled_in_contact(&retract, &plate, scales, z, tol),
+            )?
+        };
         if let Some(e) = trace_error {
             return Err(e.into());
         }
         let (t, z, which) = match end {
             End::Crossed { t, y, which } => (t, y, which),
+            // crept to rest in the contact: captured
+            End::Settled { t, y } => (t, y, 0),
             End::Timeout { .. } => {
                 return Err(DynamicsError::Timeout {
                     phase: "contact (retraction)",
@@ -504,9 +653,13 @@ pub fn close<S: SurfaceLaw>(
         contact = z[3] * ec;
         if which == 0 {
             // captured: a turning point in contact
-            let (first, d_e, _) = impacts[0];
-            let deepest = impacts.iter().map(|i| i.1).fold(f64::INFINITY, f64::min);
-            let stored = stored_energy(surface, &hist, d, d_min, out)? * phi;
+            let (first, d_e, ..) = impacts[0];
+            let deepest_impact = impacts
+                .iter()
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .expect("an impact");
+            let (deepest, deepest_error) = (deepest_impact.1, deepest_impact.3);
+            let stored = stored_energy(&retract, d, out)? * phi;
             let work_in = plate.electrostatic_work(plate.switch.d0() - y);
             let spring = 0.5 * plate.k_s * y * y;
             let kinetic = 0.5 * m * v * v;
@@ -522,12 +675,13 @@ pub fn close<S: SurfaceLaw>(
             };
             let bounces = impacts[1..]
                 .iter()
-                .map(|&(impact, d_e, time)| Bounce { impact, d_e, time })
+                .map(|&(impact, d_e, time, ..)| Bounce { impact, d_e, time })
                 .collect();
             return Ok(Closure {
                 impact: first,
                 d_e,
                 deepest,
+                deepest_error,
                 bounces,
                 history: hist,
                 capture_time: time,
@@ -546,13 +700,11 @@ pub fn close<S: SurfaceLaw>(
 }
 
 /// The elastic energy the contact gives back unloading from `d` to `out` on the retraction
-/// from `from` (J/m^2 per contact area): the integral of its pressure, Gauss-Legendre on 32
-/// panels (only the compressive part counts: the tensile well is the adhesion's).
+/// `table` holds (J/m^2 per contact area): the integral of its pressure, Gauss-Legendre on
+/// 32 panels (only the compressive part counts: the tensile well is the adhesion's).
 fn stored_energy<S: SurfaceLaw>(
-    surface: &S,
-    history: &S::History,
+    table: &PressureTable<S>,
     d: f64,
-    from: f64,
     out: f64,
 ) -> Result<f64, LawError> {
     if !(out > d) {
@@ -565,7 +717,7 @@ fn stored_energy<S: SurfaceLaw>(
     for k in 0..n {
         let (a, b) = (d + h * k as f64, d + h * (k + 1) as f64);
         for (x, w) in gl.mapped(a, b) {
-            let p = surface.pressure(x, history, Path::Retract { from })?;
+            let p = table.pressure(x)?;
             total += w * p.max(0.0);
         }
     }

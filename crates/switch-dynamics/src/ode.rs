@@ -2,7 +2,7 @@
 //! control) on a small state, stopped at the first wanted crossing of a threshold.
 
 use crate::DynamicsError;
-use diffsol::{FaerMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector};
+use diffsol::{NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector};
 use std::cell::RefCell;
 
 /// A threshold on one state component: the phase ends when `component` crosses `level`
@@ -21,6 +21,9 @@ pub(crate) enum End {
     Crossed { t: f64, y: Vec<f64>, which: usize },
     /// The time limit came first.
     Timeout { t: f64, y: Vec<f64> },
+    /// The state came to rest (the caller's `settled` said so at an accepted step): an
+    /// overdamped plate creeps into its equilibrium without ever turning.
+    Settled { t: f64, y: Vec<f64> },
 }
 
 /// An accepted step: time and state (for traces).
@@ -29,7 +32,9 @@ pub(crate) type Step = (f64, Vec<f64>);
 /// Integrates dy/dt = rhs(t, y) from `y0` at t = 0 until a wanted crossing of one of
 /// `thresholds` or `t_max`, with the relative and absolute tolerance `tol` on every
 /// component (the state is scaled by the caller to order one). `rhs` may fail: the first
-/// error stops the phase and is returned. `on_step` sees every accepted step.
+/// error stops the phase and is returned. `on_step` sees every accepted step; `settled`
+/// ends the phase at an accepted step where it holds.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn run<E>(
     phase: &'static str,
     rhs: impl Fn(f64, &[f64], &mut [f64]) -> Result<(), E>,
@@ -38,6 +43,7 @@ pub(crate) fn run<E>(
     t_max: f64,
     tol: f64,
     on_step: &mut dyn FnMut(&Step),
+    settled: &dyn Fn(&[f64]) -> bool,
 ) -> Result<End, DynamicsError>
 where
     DynamicsError: From<E>,
@@ -57,7 +63,7 @@ where
     let start = y0.to_vec();
     let levels: Vec<(usize, f64)> = thresholds.iter().map(|t| (t.component, t.level)).collect();
     let fail = |message: String| DynamicsError::Integrator { phase, message };
-    let problem = OdeBuilder::<FaerMat<f64>>::new()
+    let problem = OdeBuilder::<NalgebraMat<f64>>::new()
         .rtol(tol)
         .atol(vec![tol; n])
         .h0(1e-3)
@@ -89,7 +95,11 @@ where
         match reason? {
             OdeSolverStopReason::InternalTimestep => {
                 let s = solver.state();
-                on_step(&(s.t, s.y.clone_as_vec()));
+                let (t, y) = (s.t, s.y.clone_as_vec());
+                on_step(&(t, y.clone()));
+                if settled(&y) {
+                    return Ok(End::Settled { t, y });
+                }
             }
             OdeSolverStopReason::TstopReached => {
                 let s = solver.state();

@@ -51,7 +51,7 @@ pub fn release<S: SurfaceLaw>(
         path,
         from,
         out,
-        sigma,
+        2.0 * sigma,
         tolerance,
         floor,
     );
@@ -86,6 +86,21 @@ pub fn release<S: SurfaceLaw>(
         limit,
         tolerance,
         &mut |_| {},
+        // a contact that holds an overdamped plate: it creeps into the equilibrium of the
+        // spring and the contact's tension without turning
+        &|z: &[f64]| {
+            let dd = z[0] * sigma;
+            let v = z[1] * vel;
+            let y = s - dd;
+            let x = plate.switch.d0() - y;
+            let step = 1e-3 * sigma;
+            let (Ok(p), Ok(p_above)) = (table.pressure(dd), table.pressure(dd + step)) else {
+                return false;
+            };
+            let force = -plate.k_s * y - phi * p;
+            let kappa = plate.k_s + phi * ((p_above - p) / step).abs();
+            plate.at_rest(x, v, force, kappa, tolerance * sigma)
+        },
     )?;
     match end {
         End::Crossed { t, which: 1, .. } => Ok(Release {
@@ -93,7 +108,7 @@ pub fn release<S: SurfaceLaw>(
             opening_time: Some(t * tau),
             held_at: None,
         }),
-        End::Crossed { y, .. } => Ok(Release {
+        End::Crossed { y, .. } | End::Settled { y, .. } => Ok(Release {
             opens: false,
             opening_time: None,
             held_at: Some(y[0] * sigma),
