@@ -1,6 +1,7 @@
 //! A surface that stops when its caller asks: every fallible evaluation first polls
-//! [`Progress::cancelled`], so that a switch run (whose cycles can take seconds each) stops
-//! within one surface evaluation.
+//! [`Progress::cancelled`], and so does `SurfaceLaw::check_cancelled` (which the plate's
+//! integration polls at every step), so that a switch run (whose cycles can take seconds
+//! each) stops within one surface evaluation or one integration step.
 
 use crate::Progress;
 use contact_core::{
@@ -115,5 +116,10 @@ impl<S: SurfaceLaw> SurfaceLaw for Cancellable<'_, S> {
     ) -> Result<Option<f64>, LawError> {
         self.check()?;
         self.surface.tension_bound(d, history, path)
+    }
+
+    fn check_cancelled(&self) -> Result<(), LawError> {
+        self.check()?;
+        self.surface.check_cancelled()
     }
 }

@@ -273,3 +273,46 @@ fn a_law_tabulation_stopped_after_its_first_report_is_cancelled() {
     // the whole adaptive tabulation takes about a minute
     assert!(t.elapsed() < Duration::from_secs(10), "{:?}", t.elapsed());
 }
+
+#[test]
+fn a_switch_in_time_under_a_gas_film_stops_within_an_integration_step() {
+    // the plate creeps through an atmosphere's squeeze film for minutes of computing:
+    // its flight evaluates no surface, the integration polls the stop at every step
+    let mut s = Scene::paper(Kind::Switch);
+    s.remove("switch.impact_energy");
+    for (k, v) in [
+        ("switch.k_s", "8.44e9"),
+        ("switch.voltage", "60.0"),
+        ("switch.dimple_height", "50e-9"),
+        ("dynamics.areal_mass", "0.0246"),
+        ("dynamics.gas_pressure", "101325.0"),
+    ] {
+        s.set_text(k, v).unwrap();
+    }
+    let spec = SwitchSpec::new(&s, &LawRegistry::builtin()).unwrap();
+    let model = SwitchModel::build(&spec).unwrap();
+    struct StopAt {
+        at: Instant,
+        seen: Mutex<Option<Instant>>,
+    }
+    impl Progress for StopAt {
+        fn cancelled(&self) -> bool {
+            let now = Instant::now();
+            if now < self.at {
+                return false;
+            }
+            self.seen.lock().unwrap().get_or_insert(now);
+            true
+        }
+    }
+    let stop = StopAt {
+        at: Instant::now() + Duration::from_millis(300),
+        seen: Mutex::new(None),
+    };
+    is_cancelled(model.run(&stop));
+    let late = Instant::now() - stop.at;
+    assert!(
+        late < Duration::from_millis(200),
+        "stopped {late:?} after the stop"
+    );
+}

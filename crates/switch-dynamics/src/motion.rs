@@ -336,7 +336,17 @@ pub fn close<S: SurfaceLaw>(
                 })
             }
         };
-        let end = ode::run("flight", rhs, &thresholds, &z0, limit_t0, tol, &mut on_step)?;
+        let poll = || surface.check_cancelled();
+        let end = ode::run(
+            "flight",
+            rhs,
+            &thresholds,
+            &z0,
+            limit_t0,
+            tol,
+            &mut on_step,
+            &poll,
+        )?;
         let (t, z) = match end {
             End::Crossed { t, y, which: 0 } => (t, y),
             End::Crossed { t, y: z, .. } => {
@@ -441,6 +451,7 @@ pub fn close<S: SurfaceLaw>(
             limit,
             tol,
             &mut |st| on_contact(st, approach),
+            &|| surface.check_cancelled(),
         )?;
         let (t, z) = match end {
             End::Crossed { t, y, .. } => (t, y),
@@ -482,6 +493,7 @@ pub fn close<S: SurfaceLaw>(
             limit,
             tol,
             &mut |st| on_contact(st, &retract),
+            &|| surface.check_cancelled(),
         )?;
         if let Some(e) = trace_error {
             return Err(e.into());

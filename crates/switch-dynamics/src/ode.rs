@@ -29,7 +29,9 @@ pub(crate) type Step = (f64, Vec<f64>);
 /// Integrates dy/dt = rhs(t, y) from `y0` at t = 0 until a wanted crossing of one of
 /// `thresholds` or `t_max`, with the relative and absolute tolerance `tol` on every
 /// component (the state is scaled by the caller to order one). `rhs` may fail: the first
-/// error stops the phase and is returned. `on_step` sees every accepted step.
+/// error stops the phase and is returned. `on_step` sees every accepted step; `poll` is
+/// asked before every step whether the caller lets the phase go on (its error stops it).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn run<E>(
     phase: &'static str,
     rhs: impl Fn(f64, &[f64], &mut [f64]) -> Result<(), E>,
@@ -38,6 +40,7 @@ pub(crate) fn run<E>(
     t_max: f64,
     tol: f64,
     on_step: &mut dyn FnMut(&Step),
+    poll: &dyn Fn() -> Result<(), contact_core::LawError>,
 ) -> Result<End, DynamicsError>
 where
     DynamicsError: From<E>,
@@ -82,6 +85,7 @@ where
         .map_err(|e| fail(e.to_string()))?;
     let mut derivative = vec![0.0; n];
     loop {
+        poll()?;
         let reason = solver.step().map_err(|e| fail(e.to_string()));
         if let Some(e) = failure.borrow_mut().take() {
             return Err(e.into());

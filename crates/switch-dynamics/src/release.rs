@@ -86,6 +86,7 @@ pub fn release<S: SurfaceLaw>(
         limit,
         tolerance,
         &mut |_| {},
+        &|| surface.check_cancelled(),
     )?;
     match end {
         End::Crossed { t, which: 1, .. } => Ok(Release {
