@@ -223,3 +223,16 @@ def test_the_reference_table_lists_the_constructors_it_shows():
         cls = getattr(stiction, name)
         want = [p for p in inspect.signature(cls).parameters]
         assert list(_params_of(table[name])) == want, name
+
+
+def test_a_map_on_an_executor_reports_its_tasks(paper_switch):
+    from concurrent.futures import ThreadPoolExecutor
+
+    rec = Recorder()
+    with ThreadPoolExecutor(2) as pool:
+        m = stiction.design_map(paper_switch, ["surface.sigma_s=2e-9:1e-7:log:4"], accuracy="fast",
+                                client=pool, progress=rec)
+    rec.check()
+    assert rec.calls[-1] == (4, 4)
+    assert m.to_json() == stiction.design_map(paper_switch, ["surface.sigma_s=2e-9:1e-7:log:4"],
+                                              accuracy="fast").to_json()
