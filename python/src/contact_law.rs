@@ -14,7 +14,7 @@ use stiction_model::contact_law::tabulate::GridSpec;
 use stiction_model::contact_law::{ContactLaw, LawError, Path as LawPath, State};
 use stiction_model::law::{self, LawOptions, LawScene, DEFAULT_POINTS};
 use stiction_model::spec::Spec;
-use stiction_model::{ModelError, Silent};
+use stiction_model::ModelError;
 
 fn law_path(word: &str) -> PyResult<LawPath> {
     match word {
@@ -335,9 +335,10 @@ impl PyContactLaw {
 }
 
 /// `stiction.tabulate_law` (`stiction law`): the law of a switch or surface scene. Returns
-/// (the summary as Python data, the law).
+/// (the summary as Python data, the law); `progress(done, total)` is called with the
+/// work done in thousandths.
 #[pyfunction]
-#[pyo3(signature = (scene, d_min = None, points = DEFAULT_POINTS as i64, tolerance = 2e-4, accuracy = None))]
+#[pyo3(signature = (scene, d_min = None, points = DEFAULT_POINTS as i64, tolerance = 2e-4, accuracy = None, progress = None))]
 pub fn tabulate_law(
     py: Python<'_>,
     scene: &Bound<'_, PyAny>,
@@ -345,6 +346,7 @@ pub fn tabulate_law(
     points: i64,
     tolerance: f64,
     accuracy: Option<&str>,
+    progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<(Py<PyAny>, PyContactLaw)> {
     let scene = scene_from_py(scene)?;
     if points < 0 {
@@ -365,12 +367,11 @@ pub fn tabulate_law(
         accuracy: accuracy_arg(accuracy)?,
     };
     options.check().or_raise()?;
-    let r = crate::pool::detach_serial(py, move || -> Result<_, ModelError> {
+    let r = crate::pool::run_reported(py, progress, false, move |p| -> Result<_, ModelError> {
         let spec = Spec::new(&scene, &registry())?;
         let ls = LawScene::of(&spec)?;
-        law::tabulate(ls, &options, &Silent)
-    })
-    .or_raise()?;
+        law::tabulate(ls, &options, p)
+    })?;
     let summary = result_to_py(py, &r)?;
     Ok((summary, PyContactLaw { law: r.law }))
 }

@@ -20,12 +20,13 @@ use stiction_model::design::{
 use stiction_model::design_sweep;
 use stiction_model::guards::{code, Validity, Warning};
 use stiction_model::scene::Scene;
-use stiction_model::{ModelError, Silent};
+use stiction_model::ModelError;
 
 /// `stiction.design_threshold`: the critical value of one field (`stiction design
-/// threshold`).
+/// threshold`), `progress(done, total)` called as design points complete.
 #[pyfunction]
-#[pyo3(signature = (scene, vary, from_, to, accuracy = None, require = None))]
+#[pyo3(signature = (scene, vary, from_, to, accuracy = None, require = None, progress = None))]
+#[allow(clippy::too_many_arguments)]
 pub fn design_threshold(
     py: Python<'_>,
     scene: &Bound<'_, PyAny>,
@@ -34,11 +35,12 @@ pub fn design_threshold(
     to: f64,
     accuracy: Option<&str>,
     require: Option<String>,
+    progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Py<PyAny>> {
     let scene = scene_from_py(scene)?;
     let acc = accuracy_arg(accuracy)?;
     let vary = vary.to_string();
-    let r = crate::pool::detach(py, move || {
+    let r = crate::pool::run_reported(py, progress, true, move |p| {
         design::threshold_with(
             &scene,
             &registry(),
@@ -47,9 +49,9 @@ pub fn design_threshold(
             to,
             acc,
             require.as_deref(),
+            p,
         )
-    })
-    .or_raise()?;
+    })?;
     let out = result_to_py(py, &r)?;
     let d = out.bind(py).cast::<PyDict>()?;
     d.set_item("warnings", warnings_to_py(py, &r.warnings)?)?;
@@ -128,9 +130,10 @@ impl PyMap {
     }
 }
 
-/// `stiction.design_map` without a cluster: the points in parallel here (rayon).
+/// `stiction.design_map` without a cluster: the points in parallel here (rayon),
+/// `progress(done, total)` called as they complete.
 #[pyfunction]
-#[pyo3(signature = (scene, vary, accuracy = None, shard = None, require = None))]
+#[pyo3(signature = (scene, vary, accuracy = None, shard = None, require = None, progress = None))]
 pub fn design_map(
     py: Python<'_>,
     scene: &Bound<'_, PyAny>,
@@ -138,11 +141,12 @@ pub fn design_map(
     accuracy: Option<&str>,
     shard: Option<&str>,
     require: Option<String>,
+    progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyMap> {
     let scene = scene_from_py(scene)?;
     let acc = accuracy_arg(accuracy)?;
     let shard = shard.map(str::to_string);
-    let r = crate::pool::detach(py, move || {
+    let r = crate::pool::run_reported(py, progress, true, move |p| {
         design::map_with(
             &scene,
             &registry(),
@@ -150,10 +154,9 @@ pub fn design_map(
             shard.as_deref(),
             acc,
             require.as_deref(),
-            &Silent,
+            p,
         )
-    })
-    .or_raise()?;
+    })?;
     Ok(PyMap::of(r))
 }
 

@@ -7,8 +7,12 @@ use pyo3::prelude::*;
 use stiction_model::contact_core::{Categorized, Category};
 use stiction_model::ModelError;
 
-/// The Python exception of a library error.
+/// The Python exception of a library error (a run its caller stopped: `KeyboardInterrupt`,
+/// when no exception of the caller's own says why).
 pub fn raise(e: ModelError) -> PyErr {
+    if e.category() == Category::Interrupted {
+        return pyo3::exceptions::PyKeyboardInterrupt::new_err(e.to_string());
+    }
     let key = match e.cause() {
         ModelError::Scene(s) => s.key().map(str::to_string),
         _ => None,

@@ -103,7 +103,8 @@ impl PyProbability {
     shard = None,
     target_halfwidth = None,
     exact = true,
-    count_outside_validity = false
+    count_outside_validity = false,
+    progress = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn design_probability(
@@ -119,6 +120,7 @@ pub fn design_probability(
     target_halfwidth: Option<f64>,
     exact: bool,
     count_outside_validity: bool,
+    progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyProbability> {
     let scene = scene_from_py(scene)?;
     let request = ProbabilityRequest {
@@ -133,8 +135,9 @@ pub fn design_probability(
         exact,
         count_outside_validity,
     };
-    let r =
-        crate::pool::detach(py, move || run(&scene, &registry(), &request, &Silent)).or_raise()?;
+    let r = crate::pool::run_reported(py, progress, true, move |p| {
+        run(&scene, &registry(), &request, p)
+    })?;
     Ok(PyProbability {
         run: r.probability,
         warnings: r.warnings,

@@ -10,7 +10,7 @@ use pyo3::types::PyDict;
 use std::path::PathBuf;
 use stiction_model::calibration::{self, CalibError, Selection};
 use stiction_model::spec::{AsperitySpec, Spec};
-use stiction_model::{asperity, md, surface, ModelError, Silent};
+use stiction_model::{asperity, md, surface, ModelError};
 
 /// Sets the accuracy mode on a copy of the scene, as the CLI's `--accuracy` does.
 pub fn with_accuracy(
@@ -47,23 +47,36 @@ enum Ran {
 }
 
 /// Runs a scene of any kind: `(kind, result)` with the result of `stiction asperity`,
-/// `stiction surface` or `stiction switch` on that scene.
+/// `stiction surface` or `stiction switch` on that scene; `progress(done, total)` is
+/// called as cycles (and model-form combinations) complete, and Ctrl-C stops the run.
 #[pyfunction]
-#[pyo3(signature = (scene, accuracy = None))]
+#[pyo3(signature = (scene, accuracy = None, progress = None))]
 pub fn run(
     py: Python<'_>,
     scene: &Bound<'_, PyAny>,
     accuracy: Option<&str>,
+    progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<(&'static str, Py<PyAny>)> {
     let scene = with_accuracy(scene_from_py(scene)?, accuracy)?;
-    let ran = crate::pool::detach(py, move || -> Result<Ran, ModelError> {
+    let ran = crate::pool::run_reported(py, progress, true, move |p| -> Result<Ran, ModelError> {
         Ok(match Spec::new(&scene, &registry())? {
-            Spec::Asperity(s) => Ran::Asperity(Box::new(asperity::run(&s)?)),
-            Spec::Surface(s) => Ran::Surface(Box::new(surface::run(&s)?)),
+            // one step: these runs take a fraction of a second
+            Spec::Asperity(s) => {
+                p.start(1, "run");
+                let r = asperity::run(&s)?;
+                p.finish();
+                Ran::Asperity(Box::new(r))
+            }
+            Spec::Surface(s) => {
+                p.start(1, "run");
+                let r = surface::run(&s)?;
+                p.finish();
+                Ran::Surface(Box::new(r))
+            }
             Spec::Switch(s) => Ran::Switch(Box::new(stiction_model::model_form::run_switch(
                 &s,
                 &registry(),
-                &Silent,
+                p,
             )?)),
             _ => {
                 return Err(ModelError::argument(
@@ -73,8 +86,7 @@ pub fn run(
                 ))
             }
         })
-    })
-    .or_raise()?;
+    })?;
     Ok(match ran {
         Ran::Asperity(r) => ("asperity", result_to_py(py, &r)?),
         Ran::Surface(r) => ("surface", result_to_py(py, &r)?),

@@ -21,7 +21,7 @@ A tutorial: docs/python.md.
 from __future__ import annotations
 
 import os
-from typing import Any, List, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, List, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -88,6 +88,27 @@ def _client(client: Any) -> Any:
             "concurrent.futures.Executor (an object with submit) or None"
         )
     return client
+
+
+_Progress = Optional[Callable[[int, int], None]]
+
+
+def _progress(value: Any) -> _Progress:
+    """A `progress` argument: None or a callable, or InputError naming it."""
+    if value is not None and not callable(value):
+        raise InputError(
+            f"invalid progress = {type(value).__name__}: must be a callable(done, total) or None"
+        )
+    return value
+
+
+_PROGRESS_DOC = """`progress`, a callable ``progress(done, total)`` (two ints), is called as the work
+    advances, at most ten times a second, and once more with ``done == total`` when the call
+    succeeds; ``done`` never decreases and never exceeds ``total`` (which grows when a
+    further stage starts, such as the model-form combinations of ``model_form =
+    "check"``). An exception it raises stops the computation and propagates to the caller.
+    Ctrl-C (SIGINT) stops the computation within a fraction of a second and raises
+    ``KeyboardInterrupt``, with or without `progress`; no partial result is returned."""
 
 
 def _word(name: str, value: Any) -> Optional[str]:
@@ -177,7 +198,11 @@ def variable_fields() -> List[str]:
 _RESULTS = {"switch": SwitchResult, "surface": SurfaceResult, "asperity": AsperityResult}
 
 
-def run(scene: SceneLike, accuracy: Optional[str] = None) -> Union[SwitchResult, SurfaceResult, AsperityResult]:
+def run(
+    scene: SceneLike,
+    accuracy: Optional[str] = None,
+    progress: _Progress = None,
+) -> Union[SwitchResult, SurfaceResult, AsperityResult]:
     """Runs a scene of any kind and returns the result of its kind, the same as the
     command of that kind (``stiction switch | surface | asperity --scene FILE``):
 
@@ -187,8 +212,9 @@ def run(scene: SceneLike, accuracy: Optional[str] = None) -> Union[SwitchResult,
     * an asperity scene: :class:`AsperityResult`.
 
     `accuracy` ("accurate" | "balanced" | "fast" | "reference") replaces the scene's, as
-    ``--accuracy`` does."""
-    kind, data = _stiction.run(scene, _word("accuracy", accuracy))
+    ``--accuracy`` does. `progress(done, total)` counts the cycles of a switch scene (an
+    asperity or surface run is one step); see "Progress and Ctrl-C" in docs/python.md."""
+    kind, data = _stiction.run(scene, _word("accuracy", accuracy), progress=_progress(progress))
     return _RESULTS[kind](data)
 
 
@@ -230,6 +256,7 @@ def design_threshold(
     to: float,
     accuracy: Optional[str] = None,
     require: Optional[str] = None,
+    progress: _Progress = None,
 ) -> ThresholdResult:
     """The critical value of the scene field `vary` (``section.key``, e.g.
     ``"surface.sigma_s"``) in [`from_`, `to`] (its SI unit) at which the pull-out ratio
@@ -237,9 +264,14 @@ def design_threshold(
     threshold --vary FIELD --from A --to B``. `require` (``"contact_resistance<1"``, ohm;
     or ``"real_contact_fraction>0.01"``) adds a second requirement, as ``--require``: the
     result's ``requirement`` has its crossings and the ``window`` of values where the
-    switch is free of stiction and meets it."""
+    switch is free of stiction and meets it. `progress(done, total)` counts the design
+    points evaluated (``total``: the scan and a typical refinement; a search that needs
+    more holds at ``total - 1`` until it ends)."""
     return ThresholdResult(
-        _stiction.design_threshold(scene, vary, from_, to, _word("accuracy", accuracy), _word("require", require))
+        _stiction.design_threshold(
+            scene, vary, from_, to, _word("accuracy", accuracy), _word("require", require),
+            progress=_progress(progress),
+        )
     )
 
 
@@ -254,6 +286,7 @@ def design_map(
     client: Any = None,
     shard: Optional[str] = None,
     require: Optional[str] = None,
+    progress: _Progress = None,
 ) -> DesignMap:
     """A 1-D or 2-D map of the pull-out ratio after accommodation (phi x largest pull-out
     in Pa / K_s d0 in Pa; above 1 the switch sticks) over the grid of `vary`,
@@ -273,22 +306,32 @@ def design_map(
     `shard` ("K/N") runs part K of N of the grid, as ``--shard``; join the parts with
     :func:`design_merge`. `require` (``"contact_resistance<1"``) marks each point's
     ``meets_requirement`` and ``in_window`` (free of stiction and meeting it), as
-    ``--require``."""
+    ``--require``. `progress(done, total)` counts the design points done (with `client`,
+    the tasks completed)."""
     vary_list = [vary] if isinstance(vary, str) else list(vary)
+    report = _progress(progress)
     if _client(client) is None:
         return _design_map(
-            _stiction.design_map(scene, vary_list, _word("accuracy", accuracy), _word("shard", shard), _word("require", require))
+            _stiction.design_map(
+                scene, vary_list, _word("accuracy", accuracy), _word("shard", shard), _word("require", require),
+                progress=report,
+            )
         )
-    from ._dask import map_on_client
+    from ._dask import Stages, map_on_client
 
-    native = map_on_client(client, scene, vary_list, accuracy, shard, require)
+    stages = Stages(report)
+    native = map_on_client(client, scene, vary_list, accuracy, shard, require, stages)
     forms = _stiction.model_form_scenes(scene, _word("accuracy", accuracy))
     if forms is not None:
         # the same map under every other combination of the credible published model
         # forms, on the cluster too (each without the requirement: only its verdicts count)
         mode, scenes, excluded = forms
-        maps = [(form, map_on_client(client, form_scene, vary_list, mode, shard, None)) for form, form_scene in scenes]
+        maps = [
+            (form, map_on_client(client, form_scene, vary_list, mode, shard, None, stages))
+            for form, form_scene in scenes
+        ]
         native = _stiction.with_map_model_form(native, mode, maps, excluded)
+    stages.end()
     return _design_map(native)
 
 
@@ -351,6 +394,7 @@ def design_probability(
     exact: bool = True,
     client: Any = None,
     count_outside_validity: bool = False,
+    progress: _Progress = None,
 ) -> ProbabilityResult:
     """The probability that a switch sticks when its design fields scatter from die to
     die, as ``stiction design probability --scatter ... --samples N --seed K``.
@@ -386,7 +430,9 @@ def design_probability(
     Samples outside the model's validity are set apart (``.outside_validity``) and the
     answer over every sample that ran is ``.all_samples`` (``stiction.probability`` with
     its interval: a number whenever a sample ran); ``count_outside_validity=True`` makes
-    that the headline ``.stiction_probability``, as ``--count-outside-validity``."""
+    that the headline ``.stiction_probability``, as ``--count-outside-validity``.
+
+    `progress(done, total)` counts the samples done (with `client`, the tasks completed)."""
     scatter_list = [scatter] if isinstance(scatter, str) else list(scatter)
     if correlate is None:
         correlate_list: List[str] = []
@@ -407,20 +453,25 @@ def design_probability(
     if not isinstance(count_outside_validity, bool):
         raise InputError(f"invalid count_outside_validity = {count_outside_validity!r}: must be True or False")
     counting = count_outside_validity
+    report = _progress(progress)
     if _client(client) is None:
-        return _probability(_stiction.design_probability(scene, *args, exact, count_outside_validity=counting))
-    from ._dask import probability_on_client
+        return _probability(
+            _stiction.design_probability(scene, *args, exact, count_outside_validity=counting, progress=report)
+        )
+    from ._dask import Stages, probability_on_client
 
-    native = probability_on_client(client, scene, args, exact, counting)
+    stages = Stages(report)
+    native = probability_on_client(client, scene, args, exact, counting, stages)
     forms = _stiction.model_form_scenes(scene, args[5])
     if forms is not None:
         mode, scenes, excluded = forms
         # the other combinations: the same samples in the check's mode, no exact answer
         runs = [
-            (form, probability_on_client(client, form_scene, args[:5] + (mode,) + args[6:], False, counting))
+            (form, probability_on_client(client, form_scene, args[:5] + (mode,) + args[6:], False, counting, stages))
             for form, form_scene in scenes
         ]
         native = _stiction.with_probability_model_form(native, mode, runs, excluded)
+    stages.end()
     return _probability(native)
 
 
@@ -436,15 +487,18 @@ def tabulate_law(
     points: int = 96,
     tolerance: float = 2e-4,
     accuracy: Optional[str] = None,
+    progress: _Progress = None,
 ) -> LawResult:
     """Tabulates the contact law p(d; d_min, path) of a switch or surface scene's rough
     surface for an FE code, as ``stiction law``: `d_min` a uniform grid of histories
     ``"FROM:TO:N"`` (m, m, count) or None for the adaptive default; `points` start points
     per branch; `tolerance` on |p_table - p_surface| / (|p_surface| + |p_pull_out|);
     `accuracy` of the surface evaluations (default fast). ``result.law`` is the
-    :class:`ContactLaw` (``.save(path)`` writes law.json)."""
+    :class:`ContactLaw` (``.save(path)`` writes law.json). `progress(done, total)`
+    counts the work in thousandths (``total`` 1000)."""
     data, native = _stiction.tabulate_law(
-        scene, _word("d_min", d_min), _count("points", points, 1), tolerance, _word("accuracy", accuracy)
+        scene, _word("d_min", d_min), _count("points", points, 1), tolerance, _word("accuracy", accuracy),
+        progress=_progress(progress),
     )
     data["law"] = ContactLaw(native)
     return LawResult(data)
@@ -529,6 +583,11 @@ def topography(
     native = _stiction.topography(os.fspath(path), file_format, spacing, height_unit, xy_unit, detrend, route,
                                   undefined, channel, cutoff, contact_radius)
     return TopographyResult._of_native(native)
+
+
+for _long in (run, design_threshold, design_map, design_probability, tabulate_law):
+    _long.__doc__ = (_long.__doc__ or "") + "\n\n    " + _PROGRESS_DOC
+del _long
 
 
 def __dir__() -> List[str]:

@@ -7,7 +7,7 @@ numeric dtype); results have the shape of the first array argument (a float for 
 scalar). Errors raise ``stiction.InputError`` or ``stiction.NumericalError``.
 """
 
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 import os
 
 import numpy as np
@@ -71,8 +71,13 @@ def scene_keys(kind: Optional[str] = None) -> List[Dict[str, Any]]:
 def variable_fields() -> List[str]:
     """The fields a design map or threshold may vary."""
 
-def run(scene: _SceneLike, accuracy: Optional[str] = None) -> Tuple[str, Dict[str, Any]]:
-    """(kind, result as Python data) of a scene of any kind."""
+def run(
+    scene: _SceneLike,
+    accuracy: Optional[str] = None,
+    progress: Optional[Callable[[int, int], None]] = None,
+) -> Tuple[str, Dict[str, Any]]:
+    """(kind, result as Python data) of a scene of any kind; `progress(done, total)` as
+    cycles complete; Ctrl-C raises KeyboardInterrupt within a fraction of a second."""
 
 def md_curve(lam: float, points: int = 200, delta_end: float = 5.0) -> Dict[str, Any]:
     """The nondimensional Maugis-Kim curve of lambda and its landmarks."""
@@ -147,8 +152,10 @@ def design_threshold(
     to: float,
     accuracy: Optional[str] = None,
     require: Optional[str] = None,
+    progress: Optional[Callable[[int, int], None]] = None,
 ) -> Dict[str, Any]:
-    """The critical value of one field (a dict of the threshold's fields)."""
+    """The critical value of one field (a dict of the threshold's fields); `progress` as
+    design points are evaluated."""
 
 class NativeMap:
     """A computed design map (whole, a shard, merged)."""
@@ -164,8 +171,9 @@ def design_map(
     accuracy: Optional[str] = None,
     shard: Optional[str] = None,
     require: Optional[str] = None,
+    progress: Optional[Callable[[int, int], None]] = None,
 ) -> NativeMap:
-    """A map with its points run here (rayon)."""
+    """A map with its points run here (rayon); `progress` as points complete."""
 
 def design_map_plan(
     scene: _SceneLike,
@@ -232,6 +240,7 @@ def design_probability(
     target_halfwidth: Optional[float] = None,
     exact: bool = True,
     count_outside_validity: bool = False,
+    progress: Optional[Callable[[int, int], None]] = None,
 ) -> NativeProbability:
     """A probability run with its samples run here (rayon): ``scatter`` FIELD=DIST in the
     field's SI unit, ``correlate`` A,B=RHO."""
@@ -312,8 +321,9 @@ def tabulate_law(
     points: int = 96,
     tolerance: float = 2e-4,
     accuracy: Optional[str] = None,
+    progress: Optional[Callable[[int, int], None]] = None,
 ) -> Tuple[Dict[str, Any], ContactLaw]:
-    """(summary, law) of a tabulation."""
+    """(summary, law) of a tabulation; `progress` in thousandths of the work."""
 
 def topography(
     path: str,

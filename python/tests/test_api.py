@@ -32,7 +32,7 @@ def test_the_contracts_names_exist():
         assert hasattr(stiction, name), name
     assert callable(stiction.ContactLaw.load) and callable(stiction.ContactLaw.evaluate)
     assert list(inspect.signature(stiction.design_map).parameters)[:4] == ["scene", "vary", "accuracy", "client"]
-    assert list(inspect.signature(stiction.run).parameters) == ["scene", "accuracy"]
+    assert list(inspect.signature(stiction.run).parameters) == ["scene", "accuracy", "progress"]
     assert list(inspect.signature(stiction.maugis_kim_force).parameters)[:3] == ["lam", "delta", "path"]
     assert inspect.signature(stiction.maugis_kim_force).parameters["path"].default == "approach"
     assert list(inspect.signature(stiction.ContactLaw.evaluate).parameters)[1:] == ["d", "d_min", "path"]

@@ -130,6 +130,7 @@ impl ThresholdCommand {
             self.to,
             self.accuracy.map(Into::into),
             self.require.as_deref(),
+            &Bar::new(),
         )
         .map_err(|e| loaded.blame(e))?;
         let format = match self.format {

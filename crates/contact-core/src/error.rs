@@ -1,8 +1,9 @@
 use thiserror::Error;
 
-/// What kind of failure an error is: the input was outside what the model accepts, or a
-/// computation on valid input could not deliver. Front ends map it to their own signal
-/// (the command line: exit status 2 for input, 1 for numerical).
+/// What kind of failure an error is: the input was outside what the model accepts, a
+/// computation on valid input could not deliver, or the caller stopped the run. Front
+/// ends map it to their own signal (the command line: exit status 2 for input, 1 for
+/// numerical; Python: `InputError`, `NumericalError`, or the caller's own exception).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Category {
@@ -10,6 +11,10 @@ pub enum Category {
     Input,
     /// A solver, a quadrature or a search that failed on valid input.
     Numerical,
+    /// A run its caller stopped before it finished (a front end's Ctrl-C, a progress
+    /// reporter that asked to cancel): neither the input nor the numerics are at fault,
+    /// and no result exists.
+    Interrupted,
 }
 
 /// An error that knows its [`Category`]. Every crate's error type implements it, so the
@@ -75,6 +80,9 @@ pub enum CoreError {
         /// Where.
         x: f64,
     },
+    /// A computation its caller stopped before it finished (see [`Category::Interrupted`]).
+    #[error("interrupted: the run was stopped before it finished")]
+    Cancelled,
 }
 
 /// Error returned through the law traits. Each crate keeps its own error enum and
@@ -138,6 +146,7 @@ impl Categorized for CoreError {
     fn category(&self) -> Category {
         match self {
             CoreError::Invalid { .. } => Category::Input,
+            CoreError::Cancelled => Category::Interrupted,
             _ => Category::Numerical,
         }
     }

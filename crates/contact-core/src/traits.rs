@@ -638,4 +638,13 @@ pub trait SurfaceLaw: Sync {
         let _ = (d, history, path);
         Ok(None)
     }
+
+    /// Whether a long computation on this surface may go on: `Err` (a
+    /// [`crate::CoreError::Cancelled`]) once the caller of the computation has stopped it.
+    /// Loops that run long without evaluating the surface (the integration of a plate's
+    /// flight) poll it at every step. Never stopped by default; a front end's wrapper
+    /// answers for its caller.
+    fn check_cancelled(&self) -> Result<(), LawError> {
+        Ok(())
+    }
 }

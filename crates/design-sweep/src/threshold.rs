@@ -76,6 +76,21 @@ pub struct ThresholdOptions {
     pub scan_points: Option<usize>,
 }
 
+impl ThresholdOptions {
+    /// The scan points of a search over [`from`, `to`] (before its refinement): the given
+    /// count, or 9 on a lin scan and 4 per decade (9 to 17) on a log scan, the scan being
+    /// log when both ends are positive and a decade or more apart.
+    pub fn scan_points_over(&self, from: f64, to: f64) -> usize {
+        let (lo, hi) = (from.min(to), from.max(to));
+        let log = lo > 0.0 && hi / lo >= 10.0;
+        match self.scan_points {
+            Some(n) => n,
+            None if log => (4 * (hi / lo).log10().ceil() as usize + 1).clamp(9, 17),
+            None => 9,
+        }
+    }
+}
+
 impl Default for ThresholdOptions {
     fn default() -> Self {
         ThresholdOptions {
@@ -362,10 +377,10 @@ where
     let log = lo > 0.0 && hi / lo >= 10.0;
     let spacing = if log { Spacing::Log } else { Spacing::Lin };
     let n = match scan_points {
-        Some(n) if (3..=1001).contains(&n) => n,
-        Some(n) => return Err(bad(format!("scan points {n} must be in 3..=1001"))),
-        None if log => (4 * (hi / lo).log10().ceil() as usize + 1).clamp(9, 17),
-        None => 9,
+        Some(n) if !(3..=1001).contains(&n) => {
+            return Err(bad(format!("scan points {n} must be in 3..=1001")))
+        }
+        _ => options.scan_points_over(from, to),
     };
     let to_u = |x: f64| if log { x.ln() } else { x };
     let from_u = |u: f64| if log { u.exp() } else { u };

@@ -20,7 +20,7 @@ use crate::laws::LawRegistry;
 use crate::scene::Scene;
 use crate::spec::{Drive, SwitchSpec};
 use crate::switch::{SharedTables, SwitchModel, SwitchResult};
-use crate::{Progress, Silent};
+use crate::{check_cancelled, CancelOnly, Progress, Silent};
 pub use design_sweep::{
     Axis, DesignPoint, Grid, Labels, Level, Map, MapRequest, PointError, Quantity, Requirement,
     Shard, Threshold, ThresholdOptions,
@@ -40,6 +40,8 @@ pub struct Evaluator<'a> {
     guards: Mutex<BTreeMap<&'static str, GuardTally>>,
     /// Reload-work tables by contact (the resolved contact section and the mode).
     tables: Mutex<BTreeMap<String, SharedTables>>,
+    /// What stops the points (never, by default).
+    stop: &'a dyn Progress,
 }
 
 /// Contacts whose reload-work tables an evaluator keeps; past this many it starts afresh
@@ -137,7 +139,17 @@ impl<'a> Evaluator<'a> {
             registry,
             guards: Mutex::new(BTreeMap::new()),
             tables: Mutex::new(BTreeMap::new()),
+            stop: &Silent,
         }
+    }
+
+    /// The same evaluator, its points stopped by `progress` ([`Progress::cancelled`]): once
+    /// it asks, a running point stops at its next surface evaluation and every point
+    /// fails at once ([`PointError::Failed`]); the caller then reports the whole run as
+    /// [`ModelError::Cancelled`].
+    pub fn stopped_by(mut self, progress: &'a dyn Progress) -> Self {
+        self.stop = progress;
+        self
     }
 
     /// The reload-work tables of `spec`'s contact, shared by every point with an equal
@@ -186,11 +198,18 @@ impl<'a> Evaluator<'a> {
 
     /// [`Evaluator::result`] of a point whose fields may be words.
     pub fn result_at(&self, values: &[(&str, Level<'_>)]) -> Result<SwitchResult, PointError> {
+        let stopped = || PointError::Failed(ModelError::Cancelled.to_string());
+        if self.stop.cancelled() {
+            return Err(stopped());
+        }
         let spec = self.spec_at(values)?;
         let model = SwitchModel::build(&spec)
             .map_err(|e| PointError::OutOfDomain(e.without_file()))?
             .with_tables(self.tables_of(&spec));
-        model.run(&Silent).map_err(|e| {
+        model.run(&CancelOnly(self.stop)).map_err(|e| {
+            if matches!(e, ModelError::Cancelled) {
+                return stopped();
+            }
             let m = e.without_file();
             let no_end_of_impact = matches!(
                 e.cause(),
@@ -582,12 +601,20 @@ pub fn threshold(
     to: f64,
     accuracy: Option<Accuracy>,
 ) -> Result<ThresholdResult, ModelError> {
-    threshold_with(scene, registry, field, from, to, accuracy, None)
+    threshold_with(scene, registry, field, from, to, accuracy, None, &Silent)
 }
+
+/// Evaluations a threshold search is expected to add to its scan: the refinement of one
+/// crossing (the progress count's total; a search that needs more holds at total - 1
+/// until it ends).
+const REFINEMENT_ESTIMATE: usize = 8;
 
 /// [`threshold`] with a second requirement `require` (`contact_resistance<1`, see
 /// [`requirement`]): its crossings along the field and the window where the switch is
-/// both free of stiction and meets it ([`design_sweep::threshold_with`]).
+/// both free of stiction and meets it ([`design_sweep::threshold_with`]). The design
+/// points it evaluates are reported to `progress` (the total: the scan and a typical
+/// refinement), which can stop the search ([`ModelError::Cancelled`]).
+#[allow(clippy::too_many_arguments)]
 pub fn threshold_with(
     scene: &Scene,
     registry: &LawRegistry,
@@ -596,7 +623,9 @@ pub fn threshold_with(
     to: f64,
     accuracy: Option<Accuracy>,
     require: Option<&str>,
+    progress: &dyn Progress,
 ) -> Result<ThresholdResult, ModelError> {
+    check_cancelled(progress)?;
     let (base, spec) = base_spec(scene, registry, accuracy)?;
     let require_text = require;
     let require = require.map(|t| requirement(t, &spec)).transpose()?;
@@ -616,21 +645,43 @@ pub fn threshold_with(
         ratio_rel_error: accuracy.targets().pull_out_tolerance,
         scan_points: None,
     };
-    let ev = Evaluator::new(base, registry);
+    let ev = Evaluator::new(base, registry).stopped_by(progress);
+    let total = (options.scan_points_over(from, to) + REFINEMENT_ESTIMATE) as u64;
+    progress.start(total, "design points");
+    let evaluated = std::sync::atomic::AtomicU64::new(0);
     let t = design_sweep::threshold_with(
         f.key,
         from,
         to,
-        |x| ev.point(&[(f.key, x)]),
+        |x| {
+            let r = ev.point(&[(f.key, x)]);
+            let n = evaluated.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            progress.set(n.min(total - 1));
+            r
+        },
         &options,
         require.as_ref(),
-    )?;
+    );
+    // a stopped search is no answer, whatever its points made of it
+    check_cancelled(progress)?;
+    let t = t?;
+    progress.set(total);
+    progress.finish();
     let warnings = ev.warnings(t.evaluations);
     let model_form = spec.model_form.check.then(|| {
         use crate::model_form::{check_accuracy, each_form, ThresholdFormRun, ThresholdModelForm};
         let mode = check_accuracy(accuracy);
         let (_, ran, excluded) = each_form(&spec, registry, scene, |s| {
-            threshold_with(s, registry, field, from, to, Some(mode), require_text)
+            threshold_with(
+                s,
+                registry,
+                field,
+                from,
+                to,
+                Some(mode),
+                require_text,
+                &CancelOnly(progress),
+            )
         });
         let run_of = |r: &ThresholdResult| ThresholdFormRun {
             laws: r.laws.clone(),
@@ -748,7 +799,8 @@ pub fn map_with(
 ) -> Result<MapResult, ModelError> {
     let (base, request, require) =
         map_request_with(scene, registry, vary, shard, accuracy, require)?;
-    let ev = Evaluator::new(base, registry);
+    check_cancelled(progress)?;
+    let ev = Evaluator::new(base, registry).stopped_by(progress);
     let total = match request.shard {
         Some(s) => s.indices(request.grid.len()).count(),
         None => request.grid.len(),
@@ -766,6 +818,8 @@ pub fn map_with(
             }
         },
     );
+    // a stopped map is no map: its points after the stop failed for that reason alone
+    check_cancelled(progress)?;
     progress.finish();
     let map = map.with_requirement(require);
     let warnings = ev.warnings(map.points().len());
@@ -774,13 +828,22 @@ pub fn map_with(
         use crate::model_form::{check_accuracy, each_form, MapModelForm};
         let mode = check_accuracy(spec.common.accuracy);
         let (_, ran, excluded) = each_form(&spec, registry, scene, |s| {
-            map_with(s, registry, vary, shard, Some(mode), None, &Silent)
+            map_with(
+                s,
+                registry,
+                vary,
+                shard,
+                Some(mode),
+                None,
+                &CancelOnly(progress),
+            )
         });
         let mut maps: Vec<(crate::switch::Laws, &Map)> =
             vec![(crate::switch::Laws::of(&spec.contact), &map)];
         maps.extend(ran.iter().map(|(form, r)| (form.laws(), &r.map)));
         MapModelForm::of(mode, &maps, excluded)
     });
+    check_cancelled(progress)?;
     Ok(MapResult {
         validity: Validity::of(&warnings),
         labels: map_labels(&map),

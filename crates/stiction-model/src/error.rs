@@ -179,6 +179,10 @@ pub enum ModelError {
     /// crate refuses what it cannot use and says why).
     #[error(transparent)]
     Topography(#[from] topography::TopographyError),
+    /// The run was stopped by its caller ([`crate::Progress::cancelled`]) before it
+    /// finished: no result exists.
+    #[error("interrupted: the run was stopped before it finished")]
+    Cancelled,
     /// An error while running a scene, with the scene's file.
     #[error("{file}: {source}")]
     InScene {
@@ -211,14 +215,26 @@ impl ModelError {
         }
     }
 
-    /// The same error, naming the scene it came from (scene errors name it already).
+    /// The same error, naming the scene it came from (scene errors name it already; a
+    /// cancelled run names none: it is the caller's doing, not the scene's).
     pub fn in_scene(self, file: &str) -> Self {
         match self {
-            e @ (ModelError::Scene(_) | ModelError::InScene { .. }) => e,
+            e @ (ModelError::Scene(_) | ModelError::InScene { .. } | ModelError::Cancelled) => e,
             e => ModelError::InScene {
                 file: file.to_string(),
                 source: Box::new(e),
             },
+        }
+    }
+
+    /// `ModelError::Cancelled` for an error of a run that `progress` stopped (whatever
+    /// the error it surfaced as on its way out: a law's, a solver's, a design point's), or
+    /// whose category is [`Category::Interrupted`]; the error itself otherwise.
+    pub fn or_cancelled(self, progress: &dyn crate::Progress) -> Self {
+        if progress.cancelled() || self.category() == Category::Interrupted {
+            ModelError::Cancelled
+        } else {
+            self
         }
     }
 
@@ -257,6 +273,7 @@ impl Categorized for ModelError {
             }
             ModelError::Calibrate(e) => e.category(),
             ModelError::Topography(_) => Category::Input,
+            ModelError::Cancelled => Category::Interrupted,
             ModelError::InScene { source, .. } => source.category(),
         }
     }

@@ -74,6 +74,7 @@ pub struct SceneSurface<'a> {
     gw: &'a RoughSurface,
     precision: switch_1d::Precision,
     evaluations: AtomicU64,
+    stop: &'a dyn Progress,
 }
 
 impl<'a> SceneSurface<'a> {
@@ -83,7 +84,15 @@ impl<'a> SceneSurface<'a> {
             gw,
             precision,
             evaluations: AtomicU64::new(0),
+            stop: &Silent,
         }
+    }
+
+    /// The same source, stopped by `progress`: once it asks, every evaluation is
+    /// [`ModelError::Cancelled`].
+    pub fn stopped_by(mut self, progress: &'a dyn Progress) -> Self {
+        self.stop = progress;
+        self
     }
 
     /// Surface pressure evaluations so far (tabulation, pull-out searches, measurements;
@@ -92,8 +101,11 @@ impl<'a> SceneSurface<'a> {
         self.evaluations.load(Ordering::Relaxed)
     }
 
-    fn tick(&self, n: u64) {
+    /// Counts `n` evaluations, or refuses them once the caller stops the run.
+    fn tick(&self, n: u64) -> Result<(), ModelError> {
+        crate::check_cancelled(self.stop)?;
         self.evaluations.fetch_add(n, Ordering::Relaxed);
+        Ok(())
     }
 
     fn history(d_min: f64) -> GwHistory {
@@ -105,7 +117,7 @@ impl LawSource for SceneSurface<'_> {
     type Error = ModelError;
 
     fn pressure(&self, d: f64, d_min: f64, branch: Branch) -> Result<f64, ModelError> {
-        self.tick(1);
+        self.tick(1)?;
         let (history, path) = match branch {
             Branch::Virgin => (GwHistory::VIRGIN, SurfacePath::Approach),
             Branch::Approach => (Self::history(d_min), SurfacePath::Approach),
@@ -115,6 +127,7 @@ impl LawSource for SceneSurface<'_> {
     }
 
     fn reach(&self, d_min: f64, branch: Branch) -> Result<f64, ModelError> {
+        crate::check_cancelled(self.stop)?;
         let (history, path) = match branch {
             Branch::Virgin => (GwHistory::VIRGIN, SurfacePath::Approach),
             Branch::Approach => (Self::history(d_min), SurfacePath::Approach),
@@ -126,9 +139,10 @@ impl LawSource for SceneSurface<'_> {
     /// The robust pull-out search of the switch model (`switch_1d::unload`): a scan of the
     /// retract branch and golden-section refinement of its most tensile point.
     fn pull_out(&self, d_min: f64) -> Result<(f64, f64), ModelError> {
-        let u = switch_1d::unload(self.gw, &Self::history(d_min), d_min, 0, self.precision)?;
         // the scan and refinement cost a few dozen evaluations; counted roughly
-        self.tick(48);
+        self.tick(48)?;
+        let stoppable = crate::Cancellable::new(self.gw, self.stop);
+        let u = switch_1d::unload(&stoppable, &Self::history(d_min), d_min, 0, self.precision)?;
         Ok((u.pull_out_separation, -u.pull_out_pressure))
     }
 
@@ -144,7 +158,7 @@ impl ReloadSource for SceneSurface<'_> {
     /// (`Path::Retract { from: d_turn }`). Exact for this model: the history after a
     /// reload from far that turned above d_min is still the one-number `Flat { d_min }`.
     fn retract_after_reload(&self, d: f64, d_min: f64, d_turn: f64) -> Result<f64, ModelError> {
-        self.tick(1);
+        self.tick(1)?;
         Ok(self.gw.pressure(
             d,
             &Self::history(d_min),
@@ -358,15 +372,19 @@ impl<'a> LawScene<'a> {
     }
 }
 
-/// Tabulates the law of `scene` with `options`, reporting surface evaluations to
-/// `progress`.
+/// Tabulates the law of `scene` with `options`, reporting its work to `progress` (in
+/// thousandths), which can stop it ([`ModelError::Cancelled`], polled at every surface
+/// evaluation).
 pub fn tabulate(
     scene: LawScene,
     options: &LawOptions,
     progress: &dyn Progress,
 ) -> Result<LawResult, ModelError> {
     let (common, _, _) = scene.parts();
-    tabulate_inner(scene, options, progress).map_err(|e| e.in_scene(common.scene.file()))
+    crate::check_cancelled(progress)?;
+    tabulate_inner(scene, options, progress)
+        .and_then(|r| crate::check_cancelled(progress).map(|()| r))
+        .map_err(|e| e.or_cancelled(progress).in_scene(common.scene.file()))
 }
 
 fn tabulate_inner(
@@ -386,7 +404,7 @@ fn tabulate_inner(
     let virgin_reach = gw.reach(&GwHistory::VIRGIN, SurfacePath::Approach)?;
     let histories = match opts.d_min {
         Some(g) => user_histories(g, &gw, precision, virgin_reach)?,
-        None => default_histories(scene, accuracy, &gw, precision, virgin_reach)?,
+        None => default_histories(scene, accuracy, &gw, precision, virgin_reach, progress)?,
     };
     let mut options = match opts.d_min {
         Some(g) => Tabulation::uniform(g),
@@ -397,7 +415,7 @@ fn tabulate_inner(
     options.max_branches = MAX_BRANCHES;
     options.pressure_floor = Some(histories.pressure_floor);
 
-    let source = SceneSurface::new(&gw, precision);
+    let source = SceneSurface::new(&gw, precision).stopped_by(progress);
     // the bar: the tabulator's fraction of its work to 900, the partial reloads to 1000
     progress.start(1000, "tabulating the contact law");
     let done = AtomicU64::new(0);
@@ -497,6 +515,7 @@ fn default_histories(
     gw: &RoughSurface,
     precision: switch_1d::Precision,
     virgin_reach: f64,
+    progress: &dyn Progress,
 ) -> Result<Histories, ModelError> {
     let sigma = gw.sigma_s();
     let (lo, deepest, cycles_d_e) = match scene {
@@ -505,7 +524,7 @@ fn default_histories(
             quick.common.points = 0;
             quick.common.accuracy = accuracy;
             quick.elastic_comparison = false;
-            let sw = SwitchModel::build(&quick)?.run(&Silent)?;
+            let sw = SwitchModel::build(&quick)?.run(&crate::CancelOnly(progress))?;
             let cycles_d_e: Vec<f64> = sw.cycles.iter().map(|c| c.d_e).collect();
             let Some(deepest) = cycles_d_e.iter().copied().reduce(f64::min) else {
                 return Err(ModelError::argument(

@@ -42,6 +42,7 @@ struct ReadmeDoctests;
 pub mod accuracy;
 pub mod asperity;
 pub mod calibration;
+mod cancel;
 pub mod design;
 mod error;
 pub mod guards;
@@ -60,6 +61,7 @@ pub mod switch;
 pub mod topography;
 
 pub use accuracy::{Accuracy, Targets};
+pub use cancel::Cancellable;
 pub use error::{ModelError, SceneError};
 
 pub use asperity_plastic;
@@ -71,19 +73,30 @@ pub use maugis_kim;
 pub use switch_1d;
 pub use switch_dynamics;
 
-/// Where a long run reports how far it is. Front ends show it (a progress bar); the
-/// library only counts. Calls may come from several threads.
+/// Where a long run reports how far it is, and how its caller stops it. Front ends show
+/// the count (a progress bar, a Python callback); the library only counts, and polls
+/// [`Progress::cancelled`] often enough (every design point, every sample, every cycle,
+/// every surface evaluation of a switch run, every step of a law's tabulation, every
+/// evaluation of a threshold search) that a stop takes effect within a fraction of a
+/// second. A run stopped so returns [`ModelError::Cancelled`], never a partial result.
+/// Calls may come from several threads.
 pub trait Progress: Sync {
-    /// A run of `total` steps of `what` starts.
+    /// A run (or the next stage of a run) of `total` steps of `what` starts.
     fn start(&self, total: u64, what: &str) {
         let _ = (total, what);
     }
-    /// `done` steps are done (never decreasing).
+    /// `done` steps are done (never decreasing within a stage).
     fn set(&self, done: u64) {
         let _ = done;
     }
-    /// The run ended.
+    /// The stage ended (all its steps done, or the rest of them not needed: a switch run
+    /// that stops at accommodation).
     fn finish(&self) {}
+    /// Whether the caller asks the run to stop (false by default: a run never stops). Polled
+    /// from the computing threads, often: it must be cheap (an atomic load).
+    fn cancelled(&self) -> bool {
+        false
+    }
 }
 
 /// No progress shown.
@@ -91,3 +104,24 @@ pub trait Progress: Sync {
 pub struct Silent;
 
 impl Progress for Silent {}
+
+/// The cancellation of `progress` without its counting: what the inner runs of a longer
+/// one report to (the design points of a map, the combinations of a model-form check),
+/// so that they stop with it while the outer run keeps the count.
+#[derive(Clone, Copy)]
+pub struct CancelOnly<'a>(pub &'a dyn Progress);
+
+impl Progress for CancelOnly<'_> {
+    fn cancelled(&self) -> bool {
+        self.0.cancelled()
+    }
+}
+
+/// `Err(ModelError::Cancelled)` if `progress` asks the run to stop.
+pub fn check_cancelled(progress: &dyn Progress) -> Result<(), ModelError> {
+    if progress.cancelled() {
+        Err(ModelError::Cancelled)
+    } else {
+        Ok(())
+    }
+}

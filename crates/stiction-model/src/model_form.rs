@@ -23,7 +23,7 @@ use crate::laws::LawRegistry;
 use crate::scene::Scene;
 use crate::spec::{ContactSpec, SwitchSpec};
 use crate::switch::{Laws, SwitchModel, SwitchResult};
-use crate::{Accuracy, Progress, Silent};
+use crate::{Accuracy, CancelOnly, Progress};
 use serde::Serialize;
 
 /// A modelling choice a check varies.
@@ -451,11 +451,13 @@ pub fn check_switch(
         let out = if reuse && *form == forms.own {
             Ok(ModelFormRun::of(own))
         } else {
-            run_form(form, base, registry, accuracy)
+            run_form(form, base, registry, accuracy, progress)
         };
         progress.set(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
         Ok::<_, ModelError>(out)
     })?;
+    // a stopped check is no check (its combinations failed for that reason alone)
+    crate::check_cancelled(progress)?;
     progress.finish();
     let mut excluded = forms.excluded.clone();
     let mut runs = Vec::new();
@@ -484,10 +486,11 @@ fn run_form(
     base: &Scene,
     registry: &LawRegistry,
     accuracy: Accuracy,
+    progress: &dyn Progress,
 ) -> Result<ModelFormRun, ModelError> {
     let scene = form.scene(base, accuracy)?;
     let spec = SwitchSpec::new(&scene, registry)?;
-    let r = SwitchModel::build(&spec)?.run(&Silent)?;
+    let r = SwitchModel::build(&spec)?.run(&CancelOnly(progress))?;
     Ok(ModelFormRun::of(&r))
 }
 

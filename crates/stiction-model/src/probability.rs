@@ -304,7 +304,8 @@ pub fn run_answered(
     answers: Option<&std::collections::HashMap<Vec<u64>, Answer>>,
 ) -> Result<ProbabilityResult, ModelError> {
     let (base, plan) = plan(scene, registry, request)?;
-    let ev = Evaluator::new(base.clone(), registry);
+    crate::check_cancelled(progress)?;
+    let ev = Evaluator::new(base.clone(), registry).stopped_by(progress);
     let fields: Vec<String> = plan.scatter.iter().map(|s| s.field.clone()).collect();
     let single = (plan.scatter.len() == 1 && request.exact).then(|| plan.scatter[0].clone());
     let accuracy = [
@@ -341,10 +342,14 @@ pub fn run_answered(
                 progress.set(*d);
             }
         },
-    )?;
+    );
+    // a stopped run is no answer: its samples after the stop failed for that reason alone
+    crate::check_cancelled(progress)?;
+    let run = run?;
     progress.finish();
     let evaluated = run.points().len();
-    let exact = single.map(|s| exact(&base, registry, &s, accuracy));
+    let exact = single.map(|s| exact(&base, registry, &s, accuracy, progress));
+    crate::check_cancelled(progress)?;
     let run = run.with_exact(exact);
     let warnings = ev.warnings(evaluated);
     let mut labels = field_labels(fields.iter().map(String::as_str));
@@ -357,7 +362,7 @@ pub fn run_answered(
     }
     // a run answered elsewhere gets its check from the front end that ran it there
     let model_form = match answers {
-        None => model_form_check(scene, registry, request, &run)?,
+        None => model_form_check(scene, registry, request, &run, progress)?,
         Some(_) => None,
     };
     Ok(ProbabilityResult {
@@ -377,6 +382,7 @@ fn model_form_check(
     registry: &LawRegistry,
     request: &ProbabilityRequest,
     own: &Probability,
+    progress: &dyn Progress,
 ) -> Result<Option<crate::model_form::ProbabilityModelForm>, ModelError> {
     use crate::model_form::{check_accuracy, each_form, ProbabilityFormRun, ProbabilityModelForm};
     let (_, spec) = crate::design::base_spec(scene, registry, request.accuracy)?;
@@ -400,8 +406,9 @@ fn model_form_check(
         ..request.clone()
     };
     let (_, ran, excluded) = each_form(&spec, registry, scene, |s| {
-        run(s, registry, &alternative, &crate::Silent)
+        run(s, registry, &alternative, &crate::CancelOnly(progress))
     });
+    crate::check_cancelled(progress)?;
     let mut runs = vec![of(crate::switch::Laws::of(&spec.contact), own)];
     runs.extend(ran.iter().map(|(form, r)| of(form.laws(), &r.probability)));
     Ok(Some(ProbabilityModelForm::of(
@@ -415,8 +422,15 @@ fn model_form_check(
 /// The exact single-field answer on the design scene `base`: the threshold of the field
 /// over its quantiles [`EXACT_TAIL`] .. 1 - [`EXACT_TAIL`] (within its domain), in the
 /// plan's accuracy mode (root to a tenth of the mode's ratio error). A search that cannot
-/// run is an unavailable answer with the reason, never an error of the run.
-fn exact(base: &Scene, registry: &LawRegistry, s: &Scatter, accuracy: Option<Accuracy>) -> Exact {
+/// run is an unavailable answer with the reason, never an error of the run (a stopped
+/// search is the caller's to discard: `progress` stops its points).
+fn exact(
+    base: &Scene,
+    registry: &LawRegistry,
+    s: &Scatter,
+    accuracy: Option<Accuracy>,
+    progress: &dyn Progress,
+) -> Exact {
     let (lo, hi) = crate::keys::key(&s.field)
         .and_then(|k| k.domain.bounds())
         .unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
@@ -427,7 +441,7 @@ fn exact(base: &Scene, registry: &LawRegistry, s: &Scatter, accuracy: Option<Acc
         ratio_rel_error: a.targets().pull_out_tolerance,
         scan_points: None,
     };
-    let ev = Evaluator::new(base.clone(), registry);
+    let ev = Evaluator::new(base.clone(), registry).stopped_by(progress);
     match design_sweep::exact_single_field(s, range, |x| ev.point(&[(&s.field, x)]), &options) {
         Ok(e) => e,
         Err(e) => Exact {

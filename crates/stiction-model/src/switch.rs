@@ -546,10 +546,14 @@ impl<'a> SwitchModel<'a> {
     }
 
     /// Runs the cycles (and the elastic comparison, at the same time), reporting cycles
-    /// to `progress`.
+    /// to `progress`; [`ModelError::Cancelled`] when `progress` stops it (polled at every
+    /// surface evaluation).
     pub fn run(&self, progress: &dyn Progress) -> Result<SwitchResult, ModelError> {
         let file = self.spec.common.scene.file().to_string();
-        self.run_inner(progress).map_err(|e| e.in_scene(&file))
+        crate::check_cancelled(progress)?;
+        self.run_inner(progress)
+            .and_then(|r| crate::check_cancelled(progress).map(|()| r))
+            .map_err(|e| e.or_cancelled(progress).in_scene(&file))
     }
 
     fn run_inner(&self, progress: &dyn Progress) -> Result<SwitchResult, ModelError> {
@@ -559,6 +563,8 @@ impl<'a> SwitchModel<'a> {
             return Ok(result);
         }
         let gw = self.surface(false)?;
+        // the cycles see the surface through the caller's stop (the same values)
+        let stoppable = crate::Cancellable::new(&gw, progress);
         let impact = self.impact();
         let options = self.options();
         let plate = self.plate()?;
@@ -569,7 +575,7 @@ impl<'a> SwitchModel<'a> {
                 progress.start(s.cycles as u64, "cycles");
                 let run = match (&plate, s.dynamics) {
                     (Some(plate), Some(d)) => switch_dynamics::run_cycles(
-                        &gw,
+                        &stoppable,
                         gw.virgin(),
                         plate,
                         options,
@@ -585,20 +591,24 @@ impl<'a> SwitchModel<'a> {
                         run
                     })
                     .map_err(ModelError::from),
-                    _ => switch_1d::run_cycles(&gw, gw.virgin(), impact, options, &mut |cy| {
-                        progress.set(cy.cycle as u64)
-                    })
-                    .map_err(ModelError::from),
+                    _ => {
+                        switch_1d::run_cycles(&stoppable, gw.virgin(), impact, options, &mut |cy| {
+                            progress.set(cy.cycle as u64)
+                        })
+                        .map_err(ModelError::from)
+                    }
                 };
                 progress.finish();
                 run
             },
             || {
                 s.elastic_comparison
-                    .then(|| self.elastic_comparison(impact, options))
+                    .then(|| self.elastic_comparison(impact, options, progress))
                     .transpose()
             },
         );
+        // a stopped run is no result: nothing computed beside it is kept either
+        crate::check_cancelled(progress)?;
         let run = match run {
             // under the gas the plate can stop short of a contact the vacuum drive reaches
             Err(ModelError::Dynamics(switch_dynamics::DynamicsError::DoesNotClose {
@@ -903,6 +913,7 @@ impl<'a> SwitchModel<'a> {
         &self,
         impact: Impact,
         options: CycleOptions,
+        progress: &dyn Progress,
     ) -> Result<ElasticResult, ModelError> {
         let el = self.surface(true)?;
         let one = CycleOptions {
@@ -910,7 +921,8 @@ impl<'a> SwitchModel<'a> {
             loading_points: 0,
             ..options
         };
-        let e = switch_1d::run_cycles(&el, el.virgin(), impact, one, &mut |_| {})?;
+        let stoppable = crate::Cancellable::new(&el, progress);
+        let e = switch_1d::run_cycles(&stoppable, el.virgin(), impact, one, &mut |_| {})?;
         let cy = &e.cycles[0];
         Ok(ElasticResult {
             d_e: cy.d_e(),

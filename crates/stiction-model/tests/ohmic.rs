@@ -289,6 +289,7 @@ fn the_design_window_holds_point_by_point() {
         500.0,
         Some(Accuracy::Fast),
         Some(&require),
+        &stiction_model::Silent,
     )
     .unwrap();
     let req = t.threshold.requirement.as_ref().unwrap();
@@ -350,6 +351,7 @@ fn a_requirement_the_scene_cannot_compute_is_refused_by_name() {
         1.0,
         Some(Accuracy::Fast),
         Some("contact_resistance<1"),
+        &stiction_model::Silent,
     )
     .unwrap_err()
     .to_string();
@@ -365,6 +367,7 @@ fn a_requirement_the_scene_cannot_compute_is_refused_by_name() {
         1.0,
         None,
         Some("resistance<1"),
+        &stiction_model::Silent,
     )
     .unwrap_err()
     .to_string();

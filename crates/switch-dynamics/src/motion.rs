@@ -408,6 +408,7 @@ pub(crate) fn close_with<'a, S: SurfaceLaw>(
             let kappa = plate.k_s + plate.electrostatic_slope(x);
             plate.at_rest(x, vv, force, kappa, tol * s)
         };
+        let poll = || surface.check_cancelled();
         let end = ode::run(
             "flight",
             rhs,
@@ -417,6 +418,7 @@ pub(crate) fn close_with<'a, S: SurfaceLaw>(
             tol,
             &mut on_step,
             &settled,
+            &poll,
         )?;
         let (t, z) = match end {
             End::Crossed { t, y, which: 0 } => (t, y),
@@ -530,6 +532,7 @@ pub(crate) fn close_with<'a, S: SurfaceLaw>(
             tol,
             &mut |st| on_contact(st, approach),
             &|z: &[f64]| settled_in_contact(approach, &plate, scales, z, tol),
+            &|| surface.check_cancelled(),
         )?;
         // a plate that crept into its equilibrium in the contact is captured there
         let mut at_rest = false;
@@ -628,6 +631,7 @@ pub(crate) fn close_with<'a, S: SurfaceLaw>(
                 tol,
                 &mut |st| on_contact(st, &retract),
                 &|z: &[f64]| settled_in_contact(&retract, &plate, scales, z, tol),
+                &|| surface.check_cancelled(),
             )?
         };
         if let Some(e) = trace_error {

@@ -33,7 +33,8 @@ pub(crate) type Step = (f64, Vec<f64>);
 /// `thresholds` or `t_max`, with the relative and absolute tolerance `tol` on every
 /// component (the state is scaled by the caller to order one). `rhs` may fail: the first
 /// error stops the phase and is returned. `on_step` sees every accepted step; `settled`
-/// ends the phase at an accepted step where it holds.
+/// ends the phase at an accepted step where it holds; `poll` is asked before every step
+/// whether the caller lets the phase go on (its error stops it).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn run<E>(
     phase: &'static str,
@@ -44,6 +45,7 @@ pub(crate) fn run<E>(
     tol: f64,
     on_step: &mut dyn FnMut(&Step),
     settled: &dyn Fn(&[f64]) -> bool,
+    poll: &dyn Fn() -> Result<(), contact_core::LawError>,
 ) -> Result<End, DynamicsError>
 where
     DynamicsError: From<E>,
@@ -88,6 +90,7 @@ where
         .map_err(|e| fail(e.to_string()))?;
     let mut derivative = vec![0.0; n];
     loop {
+        poll()?;
         let reason = solver.step().map_err(|e| fail(e.to_string()));
         if let Some(e) = failure.borrow_mut().take() {
             return Err(e.into());

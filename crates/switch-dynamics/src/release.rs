@@ -101,6 +101,7 @@ pub fn release<S: SurfaceLaw>(
             let kappa = plate.k_s + phi * ((p_above - p) / step).abs();
             plate.at_rest(x, v, force, kappa, tolerance * sigma)
         },
+        &|| surface.check_cancelled(),
     )?;
     match end {
         End::Crossed { t, which: 1, .. } => Ok(Release {
