@@ -371,6 +371,7 @@ pub fn tabulate_law(
         law::tabulate(ls, &options, &Silent)
     })
     .or_raise()?;
-    let summary = result_to_py(py, &r)?;
-    Ok((summary, PyContactLaw { law: r.law }))
+    let law = r.law.clone();
+    let summary = crate::report::result(py, crate::report::Kept::Law(Box::new(r)))?;
+    Ok((summary, PyContactLaw { law }))
 }

@@ -409,14 +409,20 @@ pub fn laws_line(l: &stiction_model::switch::Laws) -> String {
 /// The laws line of a resolved scene echo (a map's or a probability run's `scene`), when
 /// the echo has the contact's four choices.
 pub fn laws_line_of_echo(scene: &serde_json::Value) -> Option<String> {
+    laws_of_echo(scene).map(|l| laws_line(&l))
+}
+
+/// The laws and modelling choices a resolved scene echo states (its contact section),
+/// when it has all four.
+pub fn laws_of_echo(scene: &serde_json::Value) -> Option<stiction_model::switch::Laws> {
     let c = scene.get("contact")?;
     let word = |k: &str| c.get(k).and_then(|v| v.as_str()).map(str::to_owned);
-    Some(laws_line(&stiction_model::switch::Laws {
+    Some(stiction_model::switch::Laws {
         adhesion: word("adhesion_law")?,
         plasticity: word("plasticity_law")?,
         yield_modulus: static_word(&word("yield_modulus")?, &["as_printed", "composite"])?,
         reload: static_word(&word("reload")?, &["as_printed", "bounded"])?,
-    }))
+    })
 }
 
 /// `w` as the one of `words` it equals.
