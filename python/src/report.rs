@@ -55,13 +55,8 @@ pub struct PyReport {
 
 /// Writes `report`'s `--out` files to `dir` (replaced as a whole; it may hold only the
 /// command's files) and returns the paths written.
-pub fn save<R: Report>(py: Python<'_>, report: &R, dir: PathBuf) -> PyResult<Vec<String>>
-where
-    R: Sync,
-{
-    let written = py
-        .detach(|| report.save(&dir))
-        .map_err(report_error)?;
+pub fn save<R: Report + Sync>(py: Python<'_>, report: &R, dir: PathBuf) -> PyResult<Vec<String>> {
+    let written = py.detach(|| report.save(&dir)).map_err(report_error)?;
     Ok(written.iter().map(|p| p.display().to_string()).collect())
 }
 
@@ -130,8 +125,7 @@ impl PyReport {
             Kept::Topography(r) => save(py, r.as_ref(), dir),
             _ => Err(crate::errors::exception(
                 Category::Input,
-                "this result has no --out folder: its command writes a plot only (to_svg())"
-                    .into(),
+                "this result has no --out folder: its command writes a plot only (to_svg())".into(),
                 None,
             )),
         }

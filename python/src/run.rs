@@ -157,7 +157,10 @@ pub fn calibrate(
     .or_raise()?;
     let out = result_to_py(py, &r)?;
     let d = out.bind(py).cast::<PyDict>()?;
-    d.set_item("_report", report::handle(py, Kept::Calibration(Box::new(r.clone())))?)?;
+    d.set_item(
+        "_report",
+        report::handle(py, Kept::Calibration(Box::new(r.clone())))?,
+    )?;
     let points = serde_json::to_value(&r.points).unwrap_or_default();
     d.set_item("points", value_to_py(py, &points)?)?;
     let ov = serde_json::to_value(&r.overlay).unwrap_or_default();

@@ -3,10 +3,10 @@
 
 use crate::convert::{array_out, result_to_py};
 use crate::errors::OrRaise;
+use crate::report::Kept;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use crate::report::Kept;
 use stiction_model::topography::{run, TopographyRequest};
 use stiction_report::topography::TopographyResult;
 
@@ -47,7 +47,10 @@ pub fn topography<'py>(
     let r = crate::pool::detach(py, move || run(&path, &request)).or_raise()?;
     let d = PyDict::new(py);
     let kept = TopographyResult::new(r.clone());
-    d.set_item("_report", crate::report::handle(py, Kept::Topography(Box::new(kept)))?)?;
+    d.set_item(
+        "_report",
+        crate::report::handle(py, Kept::Topography(Box::new(kept)))?,
+    )?;
     d.set_item("report", result_to_py(py, &r.report)?)?;
     let m = &r.map;
     d.set_item(

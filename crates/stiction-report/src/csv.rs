@@ -9,7 +9,7 @@ fn opt(v: Option<usize>) -> String {
     v.map(|c| c.to_string()).unwrap_or_default()
 }
 
-/// `map.csv`: a header (the varied fields, then [`CSV_COLUMNS`](design_sweep::CSV_COLUMNS)) and one row per point.
+/// `map.csv`: a header (the varied fields, then [`CSV_COLUMNS`]) and one row per point.
 /// Numbers in Rust's shortest round-trip form (`{:e}`), the word of a categorical axis
 /// as it is; absent values are empty cells.
 pub fn map_csv(map: &Map) -> Result<String, ReportError> {
@@ -65,7 +65,7 @@ pub fn map_csv(map: &Map) -> Result<String, ReportError> {
 }
 
 /// `samples.csv`: `index`, a column per scattered field (named as the field), then
-/// [`SAMPLE_COLUMNS`](design_sweep::SAMPLE_COLUMNS); one row per sample. Numbers in shortest round-trip form; absent
+/// [`SAMPLE_COLUMNS`]; one row per sample. Numbers in shortest round-trip form; absent
 /// values are empty cells.
 pub fn samples_csv(run: &Probability) -> Result<String, ReportError> {
     let mut w = csv::Writer::from_writer(Vec::new());
