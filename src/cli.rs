@@ -82,10 +82,10 @@ pub fn main_with<I: IntoIterator<Item = OsString>>(args: I, registry: &LawRegist
                 Ok(()) => 0,
                 Err(source) if source.kind() == std::io::ErrorKind::BrokenPipe => 0,
                 Err(source) => {
-                    let e = Error::Write {
+                    let e = Error::from(stiction_report::ReportError::Write {
                         path: "standard output".into(),
                         source,
-                    };
+                    });
                     eprintln!("error: {e}");
                     e.exit_code()
                 }
@@ -93,7 +93,7 @@ pub fn main_with<I: IntoIterator<Item = OsString>>(args: I, registry: &LawRegist
         }
     };
     let ctx = Ctx { registry };
-    match execute(cli.command, ctx).and_then(|text| render::emit(&text)) {
+    match execute(cli.command, ctx).and_then(|text| render::emit(&text).map_err(Error::from)) {
         Ok(()) => 0,
         Err(e) => {
             eprintln!("error: {e}");

@@ -1,5 +1,5 @@
 //! The one error type of the command line: the model library's error kept typed, plus what
-//! only a command line has (options, output files, plots). The exit status comes from the
+//! only a command line has (options; output files and plots, from the presentation layer). The exit status comes from the
 //! error's category, decided where the error was made: 2 bad input, 1 numerical failure;
 //! 3 when `--strict` finds a result outside the model's validity.
 
@@ -21,23 +21,9 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
-    /// An output file or folder.
-    #[error("cannot write {path}: {source}")]
-    Write {
-        /// Where.
-        path: String,
-        /// Why.
-        #[source]
-        source: std::io::Error,
-    },
-    /// A plot.
-    #[error("cannot draw {path}: {message}")]
-    Plot {
-        /// Where.
-        path: String,
-        /// Why.
-        message: String,
-    },
+    /// An output file, folder or stream, or a plot (the presentation layer).
+    #[error(transparent)]
+    Report(#[from] stiction_report::ReportError),
     /// A law file that cannot be read or is not a valid `law.json` (`stiction law eval`).
     #[error("{}", law_file_message(file, source))]
     LawFile {
@@ -107,10 +93,7 @@ impl Error {
                 Category::Input => 2,
                 _ => 1,
             },
-            Error::Usage { .. }
-            | Error::Write { .. }
-            | Error::Plot { .. }
-            | Error::LawFile { .. } => 2,
+            Error::Usage { .. } | Error::Report(_) | Error::LawFile { .. } => 2,
             Error::Strict(_) => 3,
         }
     }

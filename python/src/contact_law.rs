@@ -372,6 +372,7 @@ pub fn tabulate_law(
         let ls = LawScene::of(&spec)?;
         law::tabulate(ls, &options, p)
     })?;
-    let summary = result_to_py(py, &r)?;
-    Ok((summary, PyContactLaw { law: r.law }))
+    let law = r.law.clone();
+    let summary = crate::report::result(py, crate::report::Kept::Law(Box::new(r)))?;
+    Ok((summary, PyContactLaw { law }))
 }

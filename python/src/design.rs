@@ -86,6 +86,16 @@ pub struct PyMap {
 }
 
 impl PyMap {
+    /// The map as the command line presents it (units from the map, as every map's).
+    fn report(&self) -> stiction_report::design::MapReport {
+        stiction_report::design::MapReport {
+            warnings: self.warnings.clone(),
+            validity: self.validity.clone(),
+            model_form: self.model_form.clone(),
+            ..stiction_report::design::MapReport::merged(self.map.clone())
+        }
+    }
+
     fn of(r: MapResult) -> Self {
         Self {
             map: r.map,
@@ -105,12 +115,37 @@ impl PyMap {
 
     /// `map.csv` exactly as `stiction design map` writes it.
     fn to_csv(&self) -> PyResult<String> {
-        self.map.to_csv().or_raise()
+        stiction_report::csv::map_csv(&self.map).map_err(crate::report::report_error)
     }
 
     /// `map.svg` exactly as `stiction design map` writes it.
     fn to_svg(&self) -> PyResult<String> {
-        self.map.to_svg(&map_labels(&self.map)).or_raise()
+        use stiction_report::Plot;
+        self.report().svg().map_err(crate::report::report_error)
+    }
+
+    /// The table `stiction design map` prints.
+    fn table(&self) -> String {
+        use stiction_report::Render;
+        self.report().table()
+    }
+
+    /// The files of `stiction design map --out` (and of a merge), byte for byte, written
+    /// to `dir` as the command writes them; the paths written.
+    fn save(&self, py: Python<'_>, dir: PathBuf) -> PyResult<Vec<String>> {
+        crate::report::save(py, &self.report(), dir)
+    }
+
+    /// The SI unit of each varied field (`switch.k_s` -> `Pa/m`), as the plot labels it.
+    fn units(&self) -> std::collections::BTreeMap<String, String> {
+        map_labels(&self.map).units
+    }
+
+    /// The base scene's laws and modelling choices (its echo's contact section), or None.
+    fn laws<'py>(&self, py: Python<'py>) -> PyResult<Option<Py<PyAny>>> {
+        stiction_report::switch::laws_of_echo(self.map.scene())
+            .map(|l| result_to_py(py, &l))
+            .transpose()
     }
 
     /// The map as Python data: map.json's keys (`scene`, `grid`, `accuracy`, `points`,

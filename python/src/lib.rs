@@ -15,6 +15,7 @@ mod errors;
 mod laws;
 mod pool;
 mod probability;
+mod report;
 mod run;
 mod scene;
 mod topography;
@@ -26,6 +27,7 @@ use pyo3::prelude::*;
 fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<scene::PyScene>()?;
+    m.add_class::<report::PyReport>()?;
     m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene::variable_fields, m)?)?;
     m.add_function(wrap_pyfunction!(scene::scene_keys, m)?)?;

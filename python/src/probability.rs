@@ -27,6 +27,17 @@ pub struct PyProbability {
 }
 
 impl PyProbability {
+    /// The run as the command line presents it (labels from the run alone, as a merged
+    /// run's: the same as the run's own).
+    fn report(&self) -> stiction_report::probability::ProbabilityReport {
+        stiction_report::probability::ProbabilityReport {
+            warnings: self.warnings.clone(),
+            validity: self.validity.clone(),
+            model_form: self.model_form.clone(),
+            ..stiction_report::probability::ProbabilityReport::merged(self.run.clone())
+        }
+    }
+
     fn read(run: Probability) -> Self {
         Self {
             run,
@@ -48,26 +59,38 @@ impl PyProbability {
     /// What `stiction design probability --format json` prints: `probability.json`
     /// without the samples.
     fn summary_json(&self) -> String {
-        // as the command prints it: the run's view, then the validity of its samples
-        #[derive(serde::Serialize)]
-        struct Out<'a> {
-            #[serde(flatten)]
-            run: design_sweep::ProbabilityView<'a>,
-            #[serde(skip_serializing_if = "Option::is_none")]
-            validity: Option<&'a Validity>,
-        }
-        let mut s = serde_json::to_string_pretty(&Out {
-            run: self.run.view(false),
-            validity: self.validity.as_ref(),
-        })
-        .expect("a probability run always serialises");
-        s.push('\n');
-        s
+        stiction_report::render::json(&self.report())
     }
 
     /// `samples.csv` exactly as `stiction design probability --out` writes it.
     fn to_csv(&self) -> PyResult<String> {
-        self.run.to_csv().map_err(ModelError::from).or_raise()
+        stiction_report::csv::samples_csv(&self.run).map_err(crate::report::report_error)
+    }
+
+    /// `probability.svg` exactly as `stiction design probability --out` writes it.
+    fn to_svg(&self) -> PyResult<String> {
+        use stiction_report::Plot;
+        self.report().svg().map_err(crate::report::report_error)
+    }
+
+    /// The table `stiction design probability` prints.
+    fn table(&self) -> String {
+        use stiction_report::Render;
+        self.report().table()
+    }
+
+    /// The files of `stiction design probability --out` (and of a merge), byte for byte:
+    /// samples.csv, probability.json, probability.svg (and model_form.json with a
+    /// model-form check), written to `dir` as the command writes them; the paths written.
+    fn save(&self, py: Python<'_>, dir: PathBuf) -> PyResult<Vec<String>> {
+        crate::report::save(py, &self.report(), dir)
+    }
+
+    /// The base scene's laws and modelling choices (its echo's contact section), or None.
+    fn laws<'py>(&self, py: Python<'py>) -> PyResult<Option<Py<PyAny>>> {
+        stiction_report::switch::laws_of_echo(&self.run.plan().scene)
+            .map(|l| result_to_py(py, &l))
+            .transpose()
     }
 
     /// The run as Python data: probability.json's keys (the samples under `points`), plus

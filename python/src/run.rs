@@ -4,6 +4,7 @@
 
 use crate::convert::{result_to_py, value_to_py};
 use crate::errors::{argument, OrRaise};
+use crate::report::{self, Kept};
 use crate::scene::{registry, scene_from_py};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -88,9 +89,9 @@ pub fn run(
         })
     })?;
     Ok(match ran {
-        Ran::Asperity(r) => ("asperity", result_to_py(py, &r)?),
-        Ran::Surface(r) => ("surface", result_to_py(py, &r)?),
-        Ran::Switch(r) => ("switch", result_to_py(py, &r)?),
+        Ran::Asperity(r) => ("asperity", report::result(py, Kept::Asperity(r))?),
+        Ran::Surface(r) => ("surface", report::result(py, Kept::Surface(r))?),
+        Ran::Switch(r) => ("switch", report::result(py, Kept::Switch(r))?),
     })
 }
 
@@ -168,6 +169,10 @@ pub fn calibrate(
     .or_raise()?;
     let out = result_to_py(py, &r)?;
     let d = out.bind(py).cast::<PyDict>()?;
+    d.set_item(
+        "_report",
+        report::handle(py, Kept::Calibration(Box::new(r.clone())))?,
+    )?;
     let points = serde_json::to_value(&r.points).unwrap_or_default();
     d.set_item("points", value_to_py(py, &points)?)?;
     let ov = serde_json::to_value(&r.overlay).unwrap_or_default();

@@ -3,10 +3,12 @@
 
 use crate::convert::{array_out, result_to_py};
 use crate::errors::OrRaise;
+use crate::report::Kept;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
 use stiction_model::topography::{run, TopographyRequest};
+use stiction_report::topography::TopographyResult;
 
 /// `stiction.topography(path, ...)`: the report (the command's JSON), the height map as
 /// read (m, rows = y, `dx`, `dy`), the `[surface]` scene fragment and its warnings; the
@@ -44,6 +46,11 @@ pub fn topography<'py>(
     };
     let r = crate::pool::detach(py, move || run(&path, &request)).or_raise()?;
     let d = PyDict::new(py);
+    let kept = TopographyResult::new(r.clone());
+    d.set_item(
+        "_report",
+        crate::report::handle(py, Kept::Topography(Box::new(kept)))?,
+    )?;
     d.set_item("report", result_to_py(py, &r.report)?)?;
     let m = &r.map;
     d.set_item(

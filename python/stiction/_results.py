@@ -22,6 +22,7 @@ import numpy as np
 __all__ = [
     "Record",
     "Table",
+    "CycleTable",
     "PressureCurve",
     "ForceCurve",
     "MdCurve",
@@ -87,43 +88,26 @@ def _plain(v: Any) -> Any:
 
 
 
-def _write_folder(folder: Any, files: Sequence[Tuple[str, str]]) -> None:
-    """Writes `files` (name, text) into `folder` (made if missing) as the command line's
-    ``--out`` does: each file whole (a hidden temporary beside it, renamed over it, so never
-    half-written), and nothing written where a name is held by something other than a
-    regular file (a symbolic link, a FIFO, a device, a folder), which is refused naming it
-    before anything is written."""
-    import os
-    import stat
+def _pandas() -> Any:
+    """pandas, imported when a conversion asks for it."""
+    try:
+        import pandas
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError("to_pandas() needs pandas: pip install pandas") from e
+    return pandas
 
-    from ._errors import InputError
 
-    folder = os.fspath(folder)
-    os.makedirs(folder, exist_ok=True)
-    for name, _ in files:
-        path = os.path.join(folder, name)
-        try:
-            st = os.lstat(path)
-        except FileNotFoundError:
-            continue
-        if not stat.S_ISREG(st.st_mode):
-            what = (
-                "a symbolic link" if stat.S_ISLNK(st.st_mode)
-                else "a FIFO" if stat.S_ISFIFO(st.st_mode)
-                else "a folder" if stat.S_ISDIR(st.st_mode)
-                else "a device or socket"
-            )
-            raise InputError(f"cannot write {path}: {what} is there (an output replaces only a regular file)")
-    for name, text in files:
-        path = os.path.join(folder, name)
-        tmp = os.path.join(folder, f".{name}.tmp-{os.getpid()}")
-        try:
-            with open(tmp, "w", encoding="utf-8") as f:
-                f.write(text)
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.remove(tmp)
+def _xarray() -> Any:
+    """xarray, imported when a conversion asks for it."""
+    try:
+        import xarray
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError("to_xarray() needs xarray: pip install xarray") from e
+    return xarray
+
+
+def _saved(paths: Sequence[str]) -> List[str]:
+    return list(paths)
 
 
 class Table:
@@ -228,6 +212,12 @@ class Table:
         """The columns, by name."""
         return dict(self._columns)
 
+    def to_pandas(self) -> Any:
+        """The table as a ``pandas.DataFrame``, one column per column of the table, in
+        order (pandas is imported here: ImportError naming it when it is missing)."""
+        pd = _pandas()
+        return pd.DataFrame({k: (v.tolist() if v.dtype == object else v) for k, v in self._columns.items()})
+
     def __repr__(self) -> str:
         return f"<{type(self).__name__}: {len(self)} rows of {', '.join(self._columns)}>"
 
@@ -257,6 +247,47 @@ class MdCurve(Table):
     ``branch`` ("contact" | "non_contact"), ``stable``."""
 
     _units = {"delta": "-", "force": "-", "a": "-", "c": "-", "s": "-", "branch": "", "stable": ""}
+
+
+class CycleTable(Table):
+    """A switch run's cycles, one row per cycle (``SwitchResult.per_cycle``): the cycles'
+    scalar fields and the contact states' as ``hold_*`` / ``end_*``. ``to_pandas()`` has
+    exactly the columns of cycles.csv (``stiction switch --out``), in its order and with
+    its unit-suffixed names, one row per cycle (cycles.csv adds a last row for the
+    elastic comparison)."""
+
+    #: cycles.csv's header: each column and the table column it holds
+    CSV_COLUMNS: ClassVar[Dict[str, str]] = {
+        "cycle": "cycle",
+        "d_e_m": "d_e",
+        "pull_out_pressure_pa": "pull_out_pressure",
+        "pull_out_separation_m": "pull_out_separation",
+        "sticks": "sticks",
+        "pull_out_ratio": "pull_out_ratio",
+        "deepened": "deepened",
+        "hold_status": "hold_status",
+        "hold_separation_m": "hold_separation",
+        "hold_real_contact_fraction": "hold_real_contact_fraction",
+        "hold_spot_density_per_m2": "hold_spot_density",
+        "hold_mean_spot_radius_m": "hold_mean_spot_radius",
+        "hold_contact_resistance_ohm": "hold_contact_resistance",
+        "end_real_contact_fraction": "end_real_contact_fraction",
+        "end_spot_density_per_m2": "end_spot_density",
+        "end_mean_spot_radius_m": "end_mean_spot_radius",
+        "end_contact_resistance_ohm": "end_contact_resistance",
+    }
+
+    def to_pandas(self) -> Any:
+        """The cycles as a ``pandas.DataFrame`` with cycles.csv's columns (NaN where
+        cycles.csv has an empty cell)."""
+        pd = _pandas()
+        cols = self.to_dict()
+        return pd.DataFrame(
+            {
+                name: (cols[col].tolist() if cols[col].dtype == object else cols[col])
+                for name, col in self.CSV_COLUMNS.items()
+            }
+        )
 
 
 class Record:
@@ -319,7 +350,8 @@ class Record:
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):
             return NotImplemented
-        a, b = self.__dict__, other.__dict__  # type: ignore[union-attr]
+        a = {k: v for k, v in self.__dict__.items() if k != "_report"}
+        b = {k: v for k, v in other.__dict__.items() if k != "_report"}  # type: ignore[union-attr]
         if a.keys() != b.keys():
             return False
         for k in a:
@@ -418,6 +450,33 @@ def _convert(value: Any, hint: Any) -> Any:
     return value
 
 
+class _Drawn:
+    """A result the library keeps for its presentation (``stiction-report``, the command
+    line's own): ``table()`` is what the command prints, ``to_svg()`` its figure."""
+
+    def table(self) -> str:
+        """What the command prints (``--format table``)."""
+        return self._report.table()  # type: ignore[attr-defined, no-any-return]
+
+    def to_svg(self) -> str:
+        """The figure as SVG text, byte for byte the command's (``--plot`` or the SVG of
+        ``--out``)."""
+        return self._report.to_svg()  # type: ignore[attr-defined, no-any-return]
+
+
+class _Saved(_Drawn):
+    """A result whose command writes a folder (``--out DIR``)."""
+
+    def save(self, folder: Any) -> List[str]:
+        """Writes the command line's ``--out`` files to `folder`, byte for byte, as the
+        command writes them: the folder is replaced as a whole (it may hold only the
+        command's files, else InputError), each file whole, a FIFO or device never
+        replaced. Returns the paths written."""
+        import os
+
+        return _saved(self._report.save(os.fspath(folder)))  # type: ignore[attr-defined]
+
+
 # ---------------------------------------------------------------- shared parts
 
 
@@ -444,19 +503,6 @@ class Laws(Record):
     yield_modulus: str  #: reading of eq 1 (as_printed | composite)
     reload: str  #: reload rule (as_printed | bounded)
 
-
-
-def _laws_of_scene(scene: Mapping[str, Any]) -> "Laws":
-    """The laws and modelling choices a resolved scene echo states (its contact section)."""
-    c = scene.get("contact", {}) if isinstance(scene, Mapping) else {}
-    return Laws(
-        {
-            "adhesion": c.get("adhesion_law"),
-            "plasticity": c.get("plasticity_law"),
-            "yield_modulus": c.get("yield_modulus"),
-            "reload": c.get("reload"),
-        }
-    )
 
 
 class Targets(Record):
@@ -561,7 +607,7 @@ class ElasticComparison(Record):
     unloading: PressureCurve
 
 
-class SwitchResult(Record):
+class SwitchResult(_Saved, Record):
     """A switch run (``stiction switch``): the micro-switch cycle by cycle (paper Fig 4)
     and the stiction verdict."""
 
@@ -598,33 +644,49 @@ class SwitchResult(Record):
     scene: Dict[str, Any]  #: the resolved scene (every key, defaults filled in)
     model_form: Optional[ModelFormReport]  #: the model-form check (``model_form = "check"``), else None
 
+    def dynamics_svg(self) -> Optional[str]:
+        """dynamics.svg of a switch in time, byte for byte the command's (None for a
+        quasi-static run or without curves)."""
+        return self._report.dynamics_svg()  # type: ignore[attr-defined, no-any-return]
+
     @property
-    def per_cycle(self) -> Table:
-        """The cycles' scalar fields as a table of numpy columns (``r.per_cycle.d_e``)."""
-        rows = [
-            {
+    def per_cycle(self) -> "CycleTable":
+        """The cycles' scalar fields as a table of numpy columns (``r.per_cycle.d_e``),
+        with the contact under the hold and at the end of impact as ``hold_*`` and
+        ``end_*`` columns (NaN where not computed): ``hold_contact_resistance``,
+        ``end_real_contact_fraction``, ... ``to_pandas()`` gives cycles.csv's columns."""
+        contact = [k for k, t in ContactState._hints().items() if t in (float, Optional[float])]
+
+        def row(c: "Cycle") -> Dict[str, Any]:
+            r = {
                 k: v
                 for k, v in c.__dict__.items()
                 if not isinstance(v, (Table, Record))
                 and not k.startswith("_")
                 and k not in ("hold", "end_of_impact")
             }
-            for c in self.cycles
-        ]
+            for prefix, state in (("hold_", c.hold), ("end_", c.end_of_impact)):
+                for k in contact:
+                    v = None if state is None else getattr(state, k)
+                    r[prefix + k] = np.nan if v is None else float(v)
+            return r
+
+        rows = [row(c) for c in self.cycles]
         if rows:
-            return Table.from_rows(rows)
+            return CycleTable.from_rows(rows)  # type: ignore[return-value]
         # no cycle (the switch does not close): the scalar columns, empty
         scalar = (int, float, bool, str)
         hints = Cycle._hints()
-        return Table(
-            {
-                k: np.zeros(0, dtype=bool if t is bool else int if t is int else float)
-                if t in (int, float, bool)
-                else np.asarray([], dtype=str)
-                for k, t in hints.items()
-                if t in scalar
-            }
-        )
+        cols: Dict[str, Any] = {
+            k: np.zeros(0, dtype=bool if t is bool else int if t is int else float)
+            if t in (int, float, bool)
+            else np.asarray([], dtype=str)
+            for k, t in hints.items()
+            if t in scalar
+        }
+        for prefix in ("hold_", "end_"):
+            cols.update({prefix + k: np.zeros(0) for k in contact})
+        return CycleTable(cols)
 
 
 # ---------------------------------------------------------------- surface
@@ -637,7 +699,7 @@ class SurfaceErrors(Record):
     pull_out: Optional[float]  #: the pull-out pressure's
 
 
-class SurfaceResult(Record):
+class SurfaceResult(_Drawn, Record):
     """A surface run (``stiction surface``): the rough surface's loading, unloading and
     reloading curves (eqs 14-16)."""
 
@@ -682,7 +744,7 @@ class AsperityCase(Record):
     unloading: ForceCurve
 
 
-class AsperityResult(Record):
+class AsperityResult(_Drawn, Record):
     """An asperity run (``stiction asperity``)."""
 
     title: str
@@ -762,10 +824,11 @@ class DesignMap(Record):
         object.__setattr__(self, "_native", native)
 
     @property
-    def laws(self) -> Laws:
+    def laws(self) -> Optional[Laws]:
         """The base scene's laws and modelling choices (from its ``scene`` echo; a map axis
         may vary one of them point by point)."""
-        return _laws_of_scene(self.scene)
+        laws = self._native.laws()
+        return None if laws is None else Laws(laws)
 
     def keys(self) -> List[str]:
         return [k for k in self.__dict__ if not k.startswith("_")]
@@ -810,10 +873,65 @@ class DesignMap(Record):
         """map.svg exactly as ``stiction design map`` writes it."""
         return self._native.to_svg()
 
-    def save(self, folder: Any) -> None:
-        """Writes map.json, map.csv and map.svg to `folder` (made if missing), each file
-        whole; a name held by a symbolic link, a FIFO or a device is refused (InputError)."""
-        _write_folder(folder, (("map.json", self.to_json()), ("map.csv", self.to_csv()), ("map.svg", self.to_svg())))
+    def table(self) -> str:
+        """The table ``stiction design map`` prints."""
+        return self._native.table()
+
+    def save(self, folder: Any) -> List[str]:
+        """Writes the files of ``stiction design map --out`` to `folder`, byte for byte
+        (map.csv, map.json, map.svg; with a model-form check model_form.json and
+        model_form.svg), as the command writes them: the folder is replaced as a whole and
+        may hold only those files (else InputError), each file whole, a FIFO or device
+        never replaced. Returns the paths written."""
+        import os
+
+        return _saved(self._native.save(os.fspath(folder)))
+
+    def to_xarray(self) -> Any:
+        """The map as an ``xarray.Dataset`` on its grid: one dimension per varied field
+        (its values, or its words on a categorical axis, as the coordinate, with the unit
+        in ``attrs["units"]``), and the points' ``pull_out_ratio``, ``largest_pull_out_pa``,
+        ``restoring_pressure_pa``, ``contact_resistance``, ``real_contact_fraction``
+        (NaN where a point has none or a shard lacks it), ``sticks``, ``closes``,
+        ``validity_holds`` (NaN-able floats 1/0) and ``status`` (a word; "" where absent).
+        xarray is imported here (ImportError naming it when missing)."""
+        xr = _xarray()
+        axes = self.grid["axes"]
+        units = self._native.units()
+        dims = [a["field"] for a in axes]
+        shape = tuple(int(a["n"]) for a in axes)
+        coords = {}
+        for a in axes:
+            if a.get("words") is not None:
+                values = np.asarray(a["words"], dtype=object)
+                unit = "-"
+            else:
+                values = np.asarray(a["values"], dtype=float)
+                unit = units.get(a["field"], "-")
+            coords[a["field"]] = (a["field"], values, {"units": unit})
+        numbers = {
+            "pull_out_ratio": "-",
+            "largest_pull_out_pa": "Pa",
+            "restoring_pressure_pa": "Pa",
+            "contact_resistance": "ohm",
+            "real_contact_fraction": "-",
+            "sticks": "-",
+            "closes": "-",
+            "validity_holds": "-",
+        }
+        data = {}
+        for name, unit in numbers.items():
+            grid = np.full(shape, np.nan)
+            for p in self.points:
+                v = getattr(p, name)
+                if v is not None:
+                    grid.flat[p.index] = float(v)
+            data[name] = (dims, grid, {"units": unit})
+        status = np.full(shape, "", dtype=object)
+        for p in self.points:
+            status.flat[p.index] = p.status
+        data["status"] = (dims, status)
+        return xr.Dataset(data, coords=coords, attrs={"accuracy": self.accuracy, "format": self.format})
 
 
 class ThresholdResult(Record):
@@ -982,10 +1100,10 @@ class ProbabilityResult(Record):
         object.__setattr__(self, "_native", native)
 
     @property
-    def laws(self) -> Laws:
-        """The base scene's laws and modelling choices (from its ``scene`` echo; a map axis
-        may vary one of them point by point)."""
-        return _laws_of_scene(self.scene)
+    def laws(self) -> Optional[Laws]:
+        """The base scene's laws and modelling choices (from its ``scene`` echo)."""
+        laws = self._native.laws()
+        return None if laws is None else Laws(laws)
 
     def keys(self) -> List[str]:
         return [k for k in self.__dict__ if not k.startswith("_")]
@@ -1032,10 +1150,23 @@ class ProbabilityResult(Record):
         """samples.csv exactly as ``stiction design probability --out`` writes it."""
         return self._native.to_csv()
 
-    def save(self, folder: Any) -> None:
-        """Writes probability.json and samples.csv to `folder` (made if missing): a folder
-        ``stiction design merge`` reads (the plot, probability.svg, is the command's)."""
-        _write_folder(folder, (("probability.json", self.to_json()), ("samples.csv", self.to_csv())))
+    def to_svg(self) -> str:
+        """probability.svg exactly as ``stiction design probability --out`` writes it."""
+        return self._native.to_svg()
+
+    def table(self) -> str:
+        """The table ``stiction design probability`` prints."""
+        return self._native.table()
+
+    def save(self, folder: Any) -> List[str]:
+        """Writes the files of ``stiction design probability --out`` to `folder`, byte for
+        byte: samples.csv, probability.json, probability.svg (and model_form.json with a
+        model-form check), as the command writes them (the folder replaced as a whole; it
+        may hold only those files, else InputError): a folder ``stiction design merge``
+        reads. Returns the paths written."""
+        import os
+
+        return _saved(self._native.save(os.fspath(folder)))
 
 
 # ---------------------------------------------------------------- contact law
@@ -1056,7 +1187,7 @@ class Histories(Record):
     description: str
 
 
-class LawResult(Record):
+class LawResult(_Saved, Record):
     """A tabulation of the contact law (``stiction law``); ``law`` is the
     :class:`stiction.ContactLaw` itself (``law.save(path)`` writes law.json)."""
 
@@ -1124,7 +1255,7 @@ class PullOut(Record):
 # ---------------------------------------------------------------- calibration
 
 
-class CalibrationResult(Record):
+class CalibrationResult(_Drawn, Record):
     """A calibration of eq 13 to finite-element curves (``stiction calibrate``). Besides
     the fields below it carries every key of the library's fit report."""
 
@@ -1147,7 +1278,7 @@ class CalibrationResult(Record):
     overlay: List[Dict[str, Any]]  #: data and model per curve (with overlay=True)
 
 
-class TopographyResult(Record):
+class TopographyResult(_Saved, Record):
     """A measured height map reduced to the scene's Greenwood-Williamson parameters
     (``stiction topography FILE``): the report's fields as attributes (``rms_height``,
     ``moments``, ``spectral``, ``summits``, ``grid``, ``source`` ...), ``to_dict()`` the
@@ -1159,6 +1290,7 @@ class TopographyResult(Record):
     @classmethod
     def _of_native(cls, native: Mapping[str, Any]) -> "TopographyResult":
         r = cls(native["report"])
+        object.__setattr__(r, "_report", native["_report"])
         object.__setattr__(r, "_height_map", native["heights"])
         for name in ("dx", "dy", "fragment"):
             object.__setattr__(r, "_" + name, native[name])

@@ -131,9 +131,12 @@ def _interrupt_after(delay):
 
 
 def _gas_switch(scene):
-    """The paper's switch in time under an atmosphere's squeeze film: the plate creeps to
-    the contact, a run of minutes (measured: not done after 10 minutes)."""
+    """The paper's switch in time under an atmosphere's squeeze film, the plate creeping to
+    the contact, over 300 cycles in accurate mode: about 17 s whole (a cycle in the
+    default mode takes about 0.06 s)."""
     return scene.with_values({
+        "cycles": 300,
+        "accuracy": "accurate",
         "switch.impact_energy": None,
         "switch.k_s": 8.44e9,
         "switch.voltage": 60.0,

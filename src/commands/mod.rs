@@ -21,6 +21,7 @@ use stiction_model::keys::Kind;
 use stiction_model::laws::LawRegistry;
 use stiction_model::scene::Scene;
 use stiction_model::{ModelError, SceneError};
+use stiction_report::ReportError;
 
 /// What every command runs with: the laws scenes may name.
 #[derive(Debug, Clone, Copy)]
@@ -246,7 +247,7 @@ pub struct Outputs {
     /// An `--out` folder.
     pub folder: Option<OutputSet>,
     /// `--plot` files: the path and the SVG (or why it could not be drawn).
-    pub plots: Vec<(PathBuf, Result<String, String>)>,
+    pub plots: Vec<(PathBuf, Result<String, ReportError>)>,
 }
 
 /// Checks, before any computation, that the outputs can be written: an `--out` folder
@@ -294,9 +295,9 @@ pub fn finish<R: Render>(
     render::print_warnings(&shown);
     let mut written = Vec::new();
     for (path, svg) in outputs.plots {
-        let svg = svg.map_err(|message| Error::Plot {
-            path: path.display().to_string(),
-            message,
+        let svg = svg.map_err(|e| match e {
+            ReportError::Plot { message, .. } => ReportError::plot(&path, message),
+            e => e,
         })?;
         output::write_file(&path, svg.as_bytes())?;
         written.push(path);

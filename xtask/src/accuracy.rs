@@ -186,7 +186,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
     }
     // a path that cannot take the file is refused now, not after the hours of the run
     if let Some(p) = &times_path {
-        stiction::output::check_file(std::path::Path::new(p)).map_err(|e| e.to_string())?;
+        stiction_report::output::check_file(std::path::Path::new(p)).map_err(|e| e.to_string())?;
     }
     let modes = [Accuracy::Accurate, Accuracy::Balanced, Accuracy::Fast];
     let registry = LawRegistry::builtin();
@@ -231,8 +231,11 @@ pub fn main(args: &[&str]) -> Result<(), String> {
             scenes += 1;
             if let Some(dir) = &scene_dir {
                 let path = dir.join(format!("{domain:?}-{scenes}.toml").to_lowercase());
-                stiction::output::write_file(&path, scenegen::to_toml(&s.common.scene).as_bytes())
-                    .map_err(|e| e.to_string())?;
+                stiction_report::output::write_file(
+                    &path,
+                    scenegen::to_toml(&s.common.scene).as_bytes(),
+                )
+                .map_err(|e| e.to_string())?;
             }
             if only_scenes {
                 continue;
@@ -415,7 +418,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
     );
     println!("{body}");
     if let Some(p) = &times_path {
-        stiction::output::write_file(std::path::Path::new(p), times.as_bytes())
+        stiction_report::output::write_file(std::path::Path::new(p), times.as_bytes())
             .map_err(|e| e.to_string())?;
         eprintln!("every run's wall time: {p}");
     }

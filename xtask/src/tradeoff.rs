@@ -4,13 +4,13 @@
 //! docs/figures/tradeoff.svg.
 
 use std::time::Instant;
-use stiction::plot::{self, Panel, Series};
 use stiction_model::keys::Kind;
 use stiction_model::laws::LawRegistry;
 use stiction_model::scene::Scene;
 use stiction_model::spec::SwitchSpec;
 use stiction_model::switch::{SwitchModel, SwitchResult};
 use stiction_model::{Accuracy, Silent};
+use stiction_report::plot::{self, Panel, Series};
 
 fn solve(s: &SwitchSpec, mode: Accuracy) -> Result<SwitchResult, String> {
     let mut s = s.clone();

@@ -155,9 +155,10 @@ impl Map {
     }
 }
 
-/// Marching squares in plotted coordinates (log10 for log axes); none over a categorical
-/// axis (neighbouring words are not neighbouring values).
-pub(crate) fn contour_plotted(map: &Map) -> Vec<Vec<(f64, f64)>> {
+/// The stiction boundary (ratio = 1) of a 2-D map as polylines, by marching squares in
+/// plotted coordinates ([`crate::Axis::plotted`]: log10 for log axes); none over a
+/// categorical axis (neighbouring words are not neighbouring values).
+pub fn contour_plotted(map: &Map) -> Vec<Vec<(f64, f64)>> {
     let g = map.grid();
     if g.dim() != 2 || g.has_categorical() {
         return Vec::new();

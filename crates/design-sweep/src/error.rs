@@ -85,12 +85,6 @@ pub enum DesignError {
     /// A `probability.json` that does not parse as a probability run.
     #[error("not a probability run: {0}")]
     ProbabilityJson(String),
-    /// The plot could not be drawn.
-    #[error("plot: {0}")]
-    Plot(String),
-    /// The CSV could not be written.
-    #[error("csv: {0}")]
-    Csv(String),
 }
 
 impl contact_core::Categorized for DesignError {

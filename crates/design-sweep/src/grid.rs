@@ -290,7 +290,7 @@ impl Axis {
     }
 
     /// The value in plotted coordinates: `log10(x)` on a log axis, `x` on a lin axis.
-    pub(crate) fn plotted(&self, x: f64) -> f64 {
+    pub fn plotted(&self, x: f64) -> f64 {
         match self.spacing {
             Spacing::Lin => x,
             Spacing::Log => x.log10(),

@@ -11,11 +11,12 @@
 //! * [`run_map`] evaluates the grid, or one [`Shard`] `K/N` of it, in parallel (rayon),
 //!   in index order: the same [`Map`] whatever the thread count. Failing points get a
 //!   [`Status`] and the map goes on.
-//! * [`Map::to_csv`], [`Map::to_json`], [`Map::to_svg`]: `map.csv`, `map.json`,
-//!   `map.svg` as strings (the caller writes them). [`merge`] joins shards into the
-//!   map of an unsharded run, byte for byte.
+//! * [`Map::to_json`]: the map as data (`map.json`), read back by [`Map::from_json`];
+//!   [`merge`] joins shards into the map of an unsharded run, point for point. The crate
+//!   draws nothing and writes no file: tables, CSV and plots of a map are the
+//!   presentation crate's (`stiction-report`).
 //! * [`threshold`]: scan, then Brent-Dekker refinement of every crossing of ratio = 1,
-//!   with its uncertainty; [`threshold_table`] and [`map_table`] render text tables.
+//!   with its uncertainty.
 //! * [`run_probability`]: Monte Carlo over distributions of fields ([`Scatter`], `FIELD=DIST`,
 //!   optionally [`Correlation`]s), each sample's values from `(seed, index)` alone; the
 //!   probability of stiction by cycle, after accommodation and of "does not close" with
@@ -24,7 +25,7 @@
 //!   field from its threshold and CDF.
 //!
 //! ```
-//! use design_sweep::{run_map, threshold, DesignPoint, Grid, Labels, Level, MapRequest,
+//! use design_sweep::{run_map, threshold, DesignPoint, Grid, Level, MapRequest,
 //!                    ThresholdOptions, FreeSide};
 //!
 //! // a stand-in for a switch run: ratio = (3e3 / k)^2, sticks below k = 3e3
@@ -43,9 +44,7 @@
 //! let map = run_map(request, |v: &[(&str, Level)]| point(v[0].1.number().unwrap()),
 //!                   |_done, _total| {});
 //! assert_eq!(map.points().len(), 7);
-//! assert!(map.to_csv()?.starts_with("switch.k_s,pull_out_ratio,"));
-//! let svg = map.to_svg(&Labels::new().with_unit("switch.k_s", "Pa/m"))?;
-//! assert!(svg.contains("<svg"));
+//! assert!(map.to_json().contains("\"switch.k_s\""));
 //!
 //! let t = threshold("switch.k_s", 1e2, 1e5, point, &ThresholdOptions::default())?;
 //! assert!((t.critical_value.unwrap() / 3e3 - 1.0).abs() < 1e-6);
@@ -58,18 +57,16 @@ mod dist;
 mod error;
 mod grid;
 mod map;
-mod plot;
 mod point;
 mod probability;
 mod requirement;
 mod shard;
 pub mod stats;
-mod table;
 mod threshold;
 
 use std::collections::BTreeMap;
 
-pub use boundary::{BoundaryPoint, WordBoundary};
+pub use boundary::{contour_plotted, BoundaryPoint, WordBoundary};
 pub use dist::{Correlation, Dist, DistSpec, Sampler, Scatter, DISTRIBUTIONS};
 pub use error::DesignError;
 pub use grid::{Axis, Grid, Level, Spacing, MAX_AXIS_POINTS, MAX_GRID_POINTS};
@@ -86,7 +83,6 @@ pub use probability::{
 };
 pub use requirement::{Bound, Quantity, Requirement};
 pub use shard::Shard;
-pub use table::{map_table, threshold_table};
 pub use threshold::{
     ratio_rel_error, threshold, threshold_with, Crossing, CrossingKind, FreeSide,
     RequirementCrossing, RequirementReport, ScanPoint, Threshold, ThresholdOptions,

@@ -291,62 +291,6 @@ impl Map {
             .map(|k| &self.points[k])
     }
 
-    /// `map.csv`: a header (the varied fields, then [`CSV_COLUMNS`]) and one row per point.
-    /// Numbers in Rust's shortest round-trip form (`{:e}`), the word of a categorical axis
-    /// as it is; absent values are empty cells.
-    pub fn to_csv(&self) -> Result<String, DesignError> {
-        let mut w = csv::Writer::from_writer(Vec::new());
-        let csv_err = |e: csv::Error| DesignError::Csv(e.to_string());
-        let header: Vec<&str> = self
-            .grid
-            .axes()
-            .iter()
-            .map(|a| a.field.as_str())
-            .chain(CSV_COLUMNS)
-            .collect();
-        w.write_record(&header).map_err(csv_err)?;
-        for p in &self.points {
-            let mut row: Vec<String> = self
-                .grid
-                .levels(p.index)
-                .iter()
-                .map(ToString::to_string)
-                .collect();
-            match &p.design {
-                Some(d) => {
-                    row.push(format!("{:e}", d.pull_out_ratio));
-                    row.push(format!("{:e}", d.largest_pull_out_pa));
-                    row.push(format!("{:e}", d.restoring_pressure_pa));
-                    row.push(opt(d.cycles_to_accommodation));
-                    row.push(opt(d.first_sticking_cycle));
-                    row.push(d.sticks.to_string());
-                    row.push(d.closes.to_string());
-                    row.push(d.validity_holds.to_string());
-                    row.push(match d.accommodation_cause {
-                        Some(crate::AccommodationCause::Saturated) => "saturated".into(),
-                        Some(crate::AccommodationCause::NonDeepening) => "non_deepening".into(),
-                        None => String::new(),
-                    });
-                    row.push(
-                        d.contact_resistance
-                            .map_or(String::new(), |v| format!("{v:e}")),
-                    );
-                    row.push(
-                        d.real_contact_fraction
-                            .map_or(String::new(), |v| format!("{v:e}")),
-                    );
-                }
-                None => row.extend(std::iter::repeat_n(String::new(), 11)),
-            }
-            row.push(p.status.word().to_owned());
-            w.write_record(&row).map_err(csv_err)?;
-        }
-        let bytes = w
-            .into_inner()
-            .map_err(|e| DesignError::Csv(e.to_string()))?;
-        String::from_utf8(bytes).map_err(|e| DesignError::Csv(e.to_string()))
-    }
-
     /// `map.json`, pretty-printed with a final newline. No `null` and no NaN: absent values
     /// are omitted. The shard appears only in a shard's map.
     pub fn to_json(&self) -> String {
@@ -594,10 +538,6 @@ pub struct MapSummary {
     pub max_ratio: Option<(usize, f64)>,
     /// Points free of stiction and meeting the requirement (with a requirement).
     pub in_window: Option<usize>,
-}
-
-fn opt(v: Option<usize>) -> String {
-    v.map(|c| c.to_string()).unwrap_or_default()
 }
 
 /// Joins the shards of one map into exactly the map of an unsharded run (its CSV, JSON and

@@ -54,6 +54,16 @@ pub enum AccommodationCause {
     NonDeepening,
 }
 
+impl AccommodationCause {
+    /// The cause as a word (`saturated`, `non_deepening`), as in JSON and CSV.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            AccommodationCause::Saturated => "saturated",
+            AccommodationCause::NonDeepening => "non_deepening",
+        }
+    }
+}
+
 impl DesignPoint {
     /// The point of a switch that does not close: ratio 0, no pull-out, nothing sticks.
     pub fn does_not_close(restoring_pressure_pa: f64) -> Self {

@@ -996,53 +996,6 @@ impl Probability {
         }
     }
 
-    /// `samples.csv`: `index`, a column per scattered field (named as the field), then
-    /// [`SAMPLE_COLUMNS`]; one row per sample. Numbers in shortest round-trip form; absent
-    /// values are empty cells.
-    pub fn to_csv(&self) -> Result<String, DesignError> {
-        let mut w = csv::Writer::from_writer(Vec::new());
-        let csv_err = |e: csv::Error| DesignError::Csv(e.to_string());
-        let header: Vec<&str> = std::iter::once("index")
-            .chain(self.plan.scatter.iter().map(|s| s.field.as_str()))
-            .chain(SAMPLE_COLUMNS)
-            .collect();
-        w.write_record(&header).map_err(csv_err)?;
-        let opt = |v: Option<usize>| v.map(|c| c.to_string()).unwrap_or_default();
-        for p in &self.points {
-            let mut row: Vec<String> = vec![p.index.to_string()];
-            row.extend(p.values.iter().map(|v| format!("{v:e}")));
-            row.push(p.status.word().to_owned());
-            row.push(
-                p.counted_counting(self.plan.count_outside_validity)
-                    .to_string(),
-            );
-            match &p.design {
-                Some(d) => {
-                    row.push(format!("{:e}", d.pull_out_ratio));
-                    row.push(opt(d.first_sticking_cycle));
-                    row.push(opt(d.cycles_to_accommodation));
-                    row.push(d.sticks.to_string());
-                    row.push(d.closes.to_string());
-                    row.push(d.validity_holds.to_string());
-                    row.push(format!("{:e}", d.largest_pull_out_pa));
-                    row.push(format!("{:e}", d.restoring_pressure_pa));
-                    row.push(match d.accommodation_cause {
-                        Some(crate::AccommodationCause::Saturated) => "saturated".into(),
-                        Some(crate::AccommodationCause::NonDeepening) => "non_deepening".into(),
-                        None => String::new(),
-                    });
-                }
-                None => row.extend(std::iter::repeat_n(String::new(), 9)),
-            }
-            row.push(p.status.detail().unwrap_or_default().to_owned());
-            w.write_record(&row).map_err(csv_err)?;
-        }
-        let bytes = w
-            .into_inner()
-            .map_err(|e| DesignError::Csv(e.to_string()))?;
-        String::from_utf8(bytes).map_err(|e| DesignError::Csv(e.to_string()))
-    }
-
     /// Reads a `probability.json` file (bounded like [`crate::Map::read_path`]).
     pub fn read_path(path: impl AsRef<Path>) -> Result<Probability, DesignError> {
         let path = path.as_ref();

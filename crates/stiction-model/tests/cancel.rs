@@ -276,11 +276,14 @@ fn a_law_tabulation_stopped_after_its_first_report_is_cancelled() {
 
 #[test]
 fn a_switch_in_time_under_a_gas_film_stops_within_an_integration_step() {
-    // the plate creeps through an atmosphere's squeeze film for minutes of computing:
-    // its flight evaluates no surface, the integration polls the stop at every step
+    // the plate creeps through an atmosphere's squeeze film, 300 cycles in accurate mode
+    // (about 17 s whole): its flight evaluates no surface, the integration polls the stop
+    // at every step
     let mut s = Scene::paper(Kind::Switch);
     s.remove("switch.impact_energy");
     for (k, v) in [
+        ("cycles", "300"),
+        ("accuracy", "\"accurate\""),
         ("switch.k_s", "8.44e9"),
         ("switch.voltage", "60.0"),
         ("switch.dimple_height", "50e-9"),

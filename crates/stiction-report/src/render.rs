@@ -2,13 +2,14 @@
 //! model's validity, and standard output that survives a closed pipe (files:
 //! [`crate::output`]).
 
-use crate::error::Error;
+use crate::ReportError as Error;
 use serde::Serialize;
 use std::io::Write;
 pub use stiction_model::guards::{si, Validity, Warning};
 
 /// Output format of a subcommand.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Format {
     /// Pretty-printed JSON.
     Json,

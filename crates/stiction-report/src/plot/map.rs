@@ -4,50 +4,46 @@
 //! code 0, 1, ... of a word on a categorical axis) with our own tick marks, so every axis
 //! type is one chart type.
 
-use crate::boundary::contour_plotted;
-use crate::grid::{Axis, Spacing};
-use crate::map::Map;
-use crate::point::Status;
-use crate::{DesignError, Labels};
+use super::{FREE, NO_CLOSE, SERIES, STICK};
+use crate::ReportError;
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::prelude::*;
 use std::ops::Range;
+use stiction_model::design_sweep::{contour_plotted, Axis, Labels, Map, MapPoint, Spacing, Status};
 
 const FONT: &str = "sans-serif";
 /// Stroke width of the ratio = 1 contour (tests look for it).
-pub(crate) const CONTOUR_WIDTH: u32 = 3;
-const STICK: RGBColor = RGBColor(178, 24, 43);
-const FREE: RGBColor = RGBColor(33, 102, 172);
-const NO_CLOSE: RGBColor = RGBColor(190, 190, 190);
+pub const CONTOUR_WIDTH: u32 = 3;
 
-fn plot_err(e: impl std::fmt::Display) -> DesignError {
-    DesignError::Plot(e.to_string())
+fn plot_err(e: impl std::fmt::Display) -> ReportError {
+    ReportError::Plot {
+        path: "map.svg".into(),
+        message: e.to_string(),
+    }
 }
 
-impl Map {
-    /// `map.svg` as a string. 1-D: the ratio against the field with the line ratio = 1
-    /// (log x for a log grid, log ratio when the ratios and 1 span a decade or more; points
-    /// that do not close or fail are drawn as markers at the axis floor). 2-D: a colour map
-    /// of log10 ratio with a colour bar, the contour ratio = 1, grey cells that do not
-    /// close and crossed cells that failed. Titles and axis labels come from `labels`.
-    ///
-    /// A categorical axis is drawn as its words, one tick each: 1-D, the ratio of each
-    /// word (no line joins them); 2-D over a categorical and a numeric axis, one curve of
-    /// the ratio against the numeric field per word, each in its own colour (filled
-    /// markers stick, open ones are free); 2-D over two categorical axes, the colour map
-    /// without a contour.
-    pub fn to_svg(&self, labels: &Labels) -> Result<String, DesignError> {
-        let mut buf = String::new();
-        let g = self.grid();
-        match g.dim() {
-            1 => draw_1d(self, labels, &mut buf)?,
-            _ if g.axes()[0].is_categorical() != g.axes()[1].is_categorical() => {
-                draw_by_word(self, labels, &mut buf)?
-            }
-            _ => draw_2d(self, labels, &mut buf)?,
+/// `map.svg` as a string. 1-D: the ratio against the field with the line ratio = 1 (log x
+/// for a log grid, log ratio when the ratios and 1 span a decade or more; points that do
+/// not close or fail are drawn as markers at the axis floor). 2-D: a colour map of log10
+/// ratio with a colour bar, the contour ratio = 1, grey cells that do not close and
+/// crossed cells that failed. Titles and axis labels come from `labels`.
+///
+/// A categorical axis is drawn as its words, one tick each: 1-D, the ratio of each word
+/// (no line joins them); 2-D over a categorical and a numeric axis, one curve of the ratio
+/// against the numeric field per word, each in its own colour of the palette
+/// ([`super::SERIES`]; filled markers stick, open ones are free); 2-D over two categorical
+/// axes, the colour map without a contour.
+pub fn map_svg(map: &Map, labels: &Labels) -> Result<String, ReportError> {
+    let mut buf = String::new();
+    let g = map.grid();
+    match g.dim() {
+        1 => draw_1d(map, labels, &mut buf)?,
+        _ if g.axes()[0].is_categorical() != g.axes()[1].is_categorical() => {
+            draw_by_word(map, labels, &mut buf)?
         }
-        Ok(buf)
+        _ => draw_2d(map, labels, &mut buf)?,
     }
+    Ok(buf)
 }
 
 /// A plotted axis: range, tick marks and how to label them.
@@ -243,7 +239,7 @@ fn log_ticks(lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>, usize) {
 }
 
 /// `x` with `sig` significant digits, trailing zeros dropped; plain between 1e-3 and 1e5.
-pub(crate) fn fmt_sig(x: f64, sig: usize) -> String {
+pub fn fmt_sig(x: f64, sig: usize) -> String {
     if x == 0.0 || !x.is_finite() {
         return if x == 0.0 { "0".into() } else { x.to_string() };
     }
@@ -278,7 +274,7 @@ struct RatioAxis {
 }
 
 impl RatioAxis {
-    fn of<'a>(points: impl Iterator<Item = &'a crate::map::MapPoint>) -> RatioAxis {
+    fn of<'a>(points: impl Iterator<Item = &'a MapPoint>) -> RatioAxis {
         let positive: Vec<f64> = points
             .filter_map(|p| p.ratio().filter(|r| *r > 0.0))
             .collect();
@@ -315,11 +311,11 @@ impl RatioAxis {
     }
 }
 
-fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignError> {
+fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportError> {
     let axis = &map.grid().axes()[0];
     let xs = Scale::of_axis(axis, 0.03);
     // (plotted x, point)
-    let pts: Vec<(f64, &crate::map::MapPoint)> = map
+    let pts: Vec<(f64, &MapPoint)> = map
         .points()
         .iter()
         .map(|p| (axis.plotted(p.values[0]), p))
@@ -440,7 +436,7 @@ fn chart_on<'a, 'b>(
     title: String,
     (xs, ys): (&Scale, &Scale),
     (y_label_width, bottom_margin): (u32, u32),
-) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticked, Ticked>>, DesignError> {
+) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticked, Ticked>>, ReportError> {
     ChartBuilder::on(area)
         .caption(title, (FONT, 22))
         .margin(15)
@@ -460,7 +456,7 @@ fn ratio_frame<'a, 'b>(
     (xs, ys, log_y): (&Scale, &Scale, bool),
     x_desc: String,
     boundary_label: &str,
-) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticked, Ticked>>, DesignError> {
+) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticked, Ticked>>, ReportError> {
     let mut chart = chart_on(root, title, (xs, ys), (85, 15))?;
     let xf = |t: &f64| xs.label(*t);
     let yf = |t: &f64| ys.label(*t);
@@ -491,10 +487,7 @@ fn ratio_frame<'a, 'b>(
 
 /// The runs of consecutive points with a positive ratio, as (plotted x, plotted y): a
 /// curve is broken where a point has none.
-fn positive_runs(
-    pts: &[(f64, &crate::map::MapPoint)],
-    to_y: impl Fn(f64) -> f64,
-) -> Vec<Vec<(f64, f64)>> {
+fn positive_runs(pts: &[(f64, &MapPoint)], to_y: impl Fn(f64) -> f64) -> Vec<Vec<(f64, f64)>> {
     let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
     for (x, p) in pts {
         match p.ratio().filter(|r| *r > 0.0) {
@@ -505,25 +498,11 @@ fn positive_runs(
     runs
 }
 
-/// Colours of the words of a categorical axis, in order (Tableau 10 without its red, which
-/// draws the line ratio = 1); more words than colours cycle.
-const WORD_COLOURS: [RGBColor; 9] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
-
 /// A map over a categorical and a numeric axis: the ratio against the numeric field, one
 /// curve per word (its colour in the legend), the line ratio = 1; filled markers stick,
 /// open ones are free; points that do not close (rings) and failed points (crosses) sit at
 /// the bottom in their word's colour.
-fn draw_by_word(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignError> {
+fn draw_by_word(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportError> {
     let g = map.grid();
     let (c, x) = if g.axes()[0].is_categorical() {
         (0, 1)
@@ -533,7 +512,7 @@ fn draw_by_word(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), Desi
     let (cat, num) = (&g.axes()[c], &g.axes()[x]);
     let xs = Scale::of_axis(num, 0.03);
     // per word: (plotted x, point), ascending along the numeric axis
-    let curves: Vec<Vec<(f64, &crate::map::MapPoint)>> = (0..cat.n)
+    let curves: Vec<Vec<(f64, &MapPoint)>> = (0..cat.n)
         .map(|w| {
             (0..num.n)
                 .filter_map(|j| {
@@ -573,7 +552,7 @@ fn draw_by_word(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), Desi
     )?;
 
     for (w, pts) in curves.iter().enumerate() {
-        let colour = WORD_COLOURS[w % WORD_COLOURS.len()];
+        let colour = SERIES[w % SERIES.len()];
         let line = colour.stroke_width(2);
         // the curve, broken where a point has no positive ratio
         let runs = positive_runs(pts, to_y);
@@ -708,7 +687,7 @@ fn cell_edges(axis: &Axis, scale: &Scale) -> Vec<(f64, f64)> {
         .collect()
 }
 
-fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), DesignError> {
+fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportError> {
     let g = map.grid();
     let [ax, ay] = [&g.axes()[0], &g.axes()[1]];
     let (xs0, ys0) = (Scale::of_axis(ax, 0.0), Scale::of_axis(ay, 0.0));

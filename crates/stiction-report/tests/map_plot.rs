@@ -3,8 +3,10 @@
 mod common;
 
 use common::{flaky, product};
-use design_sweep::{map_table, run_map, Grid, Labels, Level, Map, MapRequest};
+use design_sweep::{run_map, Grid, Labels, Level, Map, MapRequest};
 use serde_json::json;
+use stiction_report::design_table::map_table;
+use stiction_report::plot::map::map_svg;
 
 fn run<F>(specs: &[&str], eval: F) -> Map
 where
@@ -89,7 +91,7 @@ fn contour_follows_the_known_boundary_on_a_lin_axis() {
         .fold((f64::MAX, f64::MIN), |(a, b), &y| (a.min(y), b.max(y)));
     assert_eq!((lo, hi), (1e-9, 9e-9));
 
-    let svg = map.to_svg(&labels()).unwrap();
+    let svg = map_svg(&map, &labels()).unwrap();
     let contour = polylines(&svg, "3");
     assert_eq!(contour.len(), 1, "one contour polyline");
     assert_eq!(contour[0], line.len());
@@ -110,14 +112,14 @@ fn a_map_without_a_boundary_has_no_contour() {
         product,
     );
     assert!(map.boundary_2d().is_empty());
-    let svg = map.to_svg(&labels()).unwrap();
+    let svg = map_svg(&map, &labels()).unwrap();
     assert!(polylines(&svg, "3").is_empty());
 }
 
 #[test]
 fn failed_and_non_closing_points_are_drawn_not_dropped() {
     let map = run(&["switch.k_s=100:2000:lin:20"], flaky);
-    let svg = map.to_svg(&labels()).unwrap();
+    let svg = map_svg(&map, &labels()).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let circles = doc
         .descendants()
@@ -136,7 +138,7 @@ fn failed_and_non_closing_points_are_drawn_not_dropped() {
         ],
         |v: &[(&str, Level)]| flaky(&v[..1]),
     );
-    let svg2 = map2.to_svg(&labels()).unwrap();
+    let svg2 = map_svg(&map2, &labels()).unwrap();
     roxmltree::Document::parse(&svg2).unwrap();
     assert!(svg2.contains("x: failed or out of domain") && svg2.contains("grey: does not close"));
     let table = map_table(&map, &labels());
@@ -149,7 +151,7 @@ fn one_d_svg_with_a_log_grid_is_well_formed() {
     let map = run(&["switch.k_s=1e2:1e5:log:31"], |v: &[(&str, Level)]| {
         common::power(3e3, 2.0)(common::num(v, 0))
     });
-    let svg = map.to_svg(&labels().with_title("k_s sweep")).unwrap();
+    let svg = map_svg(&map, &labels().with_title("k_s sweep")).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let texts = common::svg_texts(&doc);
     assert!(texts.contains(&"k_s sweep"));

@@ -1,11 +1,13 @@
 //! Writes the maps of analytic stand-in evaluators to a directory, to look at:
-//! `cargo run -p design-sweep --example analytic_maps -- OUT_DIR`.
+//! `cargo run -p stiction-report --example analytic_maps -- OUT_DIR`.
 
 use design_sweep::{
-    map_table, run_map, threshold, threshold_table, DesignPoint, Grid, Labels, Level, MapRequest,
-    PointError, ThresholdOptions,
+    run_map, threshold, DesignPoint, Grid, Labels, Level, MapRequest, PointError, ThresholdOptions,
 };
 use std::path::PathBuf;
+use stiction_report::csv::map_csv;
+use stiction_report::design_table::{map_table, threshold_table};
+use stiction_report::plot::map::map_svg;
 
 fn point(ratio: f64, restoring: f64, closes: bool) -> DesignPoint {
     DesignPoint {
@@ -63,8 +65,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             shard: None,
         };
         let map = run_map(request, eval, |_, _| {});
-        std::fs::write(out.join(format!("{name}.svg")), map.to_svg(&labels)?)?;
-        std::fs::write(out.join(format!("{name}.csv")), map.to_csv()?)?;
+        std::fs::write(out.join(format!("{name}.svg")), map_svg(&map, &labels)?)?;
+        std::fs::write(out.join(format!("{name}.csv")), map_csv(&map)?)?;
         std::fs::write(out.join(format!("{name}.json")), map.to_json())?;
         println!("{name}:\n{}", map_table(&map, &labels));
     }

@@ -1,18 +1,17 @@
 //! Plain-text tables for `--format table`.
 
-use crate::grid::Level;
-use crate::map::Map;
-use crate::plot::fmt_sig;
-use crate::threshold::{FreeSide, Threshold};
-use crate::Labels;
+use crate::plot::map::fmt_sig;
 use std::fmt::Write;
+use stiction_model::design_sweep::{
+    BoundaryPoint, FreeSide, Labels, Level, Map, MapPoint, Status, Threshold,
+};
 
 /// Failed points listed by name in a table (the rest are counted).
 const LISTED_FAILURES: usize = 10;
 
 /// One crossing of ratio = 1 along `field`: where, between which grid values, the free
 /// side and the kind of crossing.
-fn crossing_text(field: &str, unit: Option<&str>, p: &crate::BoundaryPoint) -> String {
+fn crossing_text(field: &str, unit: Option<&str>, p: &BoundaryPoint) -> String {
     format!(
         "{field} ~ {} (between {} and {}), free {}, {}",
         with_unit(p.value, 4, unit),
@@ -344,8 +343,8 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
         for (j, w) in a.words.iter().enumerate() {
             let r = map.point(j).map(|p| match (&p.status, p.ratio()) {
                 // no pull-out at all (no adhesion): free, not "does not close"
-                (crate::Status::Ok, Some(0.0)) => "0 (free)".to_owned(),
-                (crate::Status::Ok | crate::Status::DoesNotClose, r) => ratio_word(r),
+                (Status::Ok, Some(0.0)) => "0 (free)".to_owned(),
+                (Status::Ok | Status::DoesNotClose, r) => ratio_word(r),
                 (other, _) => format!("- ({})", other.word()),
             });
             if let Some(r) = r {
@@ -370,9 +369,9 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
         // its own, which bounds a free side that reaches it (never "free" beyond it)
         let points = map.points();
         for w in points.windows(2) {
-            let closes = |p: &crate::MapPoint| match p.status {
-                crate::Status::Ok => Some(true),
-                crate::Status::DoesNotClose => Some(false),
+            let closes = |p: &MapPoint| match p.status {
+                Status::Ok => Some(true),
+                Status::DoesNotClose => Some(false),
                 _ => None,
             };
             if let (Some(c0), Some(c1)) = (closes(&w[0]), closes(&w[1])) {

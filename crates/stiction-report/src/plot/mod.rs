@@ -1,5 +1,13 @@
-//! SVG line plots (plotters, no system libraries). Points outside a panel's range are
-//! clipped at its border, never dropped, so a curve leaves the panel where it really does.
+//! Every plot of every result, as an SVG string (plotters, no system libraries), in one
+//! palette: [`SERIES`] for lines (the i-th line of a panel, the i-th word of a map),
+//! [`STICK`] and [`FREE`] for a verdict (and the ends of the diverging scale of a map's
+//! log ratio), [`NO_CLOSE`] for a switch that does not close.
+//!
+//! Line figures ([`svg`]): panels stacked under a title; points outside a panel's range
+//! are clipped at its border, never dropped, so a curve leaves the panel where it really
+//! does. Maps of the pull-out ratio: [`map::map_svg`].
+
+pub mod map;
 
 use plotters::prelude::*;
 
@@ -29,7 +37,8 @@ pub struct Panel {
     pub y_range: Option<(f64, f64)>,
 }
 
-const COLORS: [RGBColor; 8] = [
+/// The colours of a panel's lines (and of a map's words), in order; more lines cycle.
+pub const SERIES: [RGBColor; 8] = [
     BLACK,
     RGBColor(200, 30, 30),
     RGBColor(30, 60, 200),
@@ -39,6 +48,13 @@ const COLORS: [RGBColor; 8] = [
     RGBColor(200, 120, 0),
     RGBColor(120, 0, 200),
 ];
+
+/// A design that sticks (a map's marker and the high end of its diverging scale).
+pub const STICK: RGBColor = RGBColor(178, 24, 43);
+/// A design that is free of stiction (the low end of the diverging scale).
+pub const FREE: RGBColor = RGBColor(33, 102, 172);
+/// A design point that does not close.
+pub const NO_CLOSE: RGBColor = RGBColor(190, 190, 190);
 
 /// The parts of the polyline inside [x0, x1] x [y0, y1], each segment clipped at the
 /// border (Liang-Barsky).
@@ -168,7 +184,7 @@ pub fn svg(title: &str, panels: &[Panel]) -> Result<String, String> {
             }
             mesh.draw().map_err(|e| e.to_string())?;
             for (i, s) in panel.series.iter().enumerate() {
-                let c = COLORS[i % COLORS.len()];
+                let c = SERIES[i % SERIES.len()];
                 let runs = clip(&s.points, xr, yr);
                 for (k, run) in runs.iter().enumerate() {
                     let drawn = chart

@@ -1,4 +1,4 @@
-//! Files the commands write: never half-written, never replacing what is at their path.
+//! Files the front ends write: never half-written, never replacing what is at their path.
 //!
 //! * An output path that is absent or a regular file is written atomically: into a hidden
 //!   temporary file beside it, then renamed over it.
@@ -16,11 +16,11 @@
 //! interrupted run (Ctrl-C) removes its own, and every later run removes those of
 //! processes that no longer exist.
 
-use crate::error::Error;
+use crate::ReportError as Error;
 use std::fs::{self, File, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, Once};
+use std::sync::Mutex;
 
 /// The longest chain of symbolic links followed before giving up.
 const MAX_LINKS: usize = 40;
@@ -288,9 +288,12 @@ fn process_runs(pid: u32) -> bool {
     }
 }
 
-/// Temporary paths of this process, removed if it is interrupted (SIGINT, SIGTERM).
+/// Temporary paths of this process, removed if it is interrupted (SIGINT, SIGTERM; with
+/// the feature `interrupt`, which a program that owns its signals turns on: the command
+/// line does, a Python extension does not).
 static PENDING: Mutex<Vec<Pending>> = Mutex::new(Vec::new());
-static HANDLER: Once = Once::new();
+#[cfg(feature = "interrupt")]
+static HANDLER: std::sync::Once = std::sync::Once::new();
 
 /// One registered write: temporary paths to remove on interruption, and a folder moved
 /// aside to put back.
@@ -308,9 +311,10 @@ struct PendingGuard(u128);
 
 impl Pending {
     fn register(remove: Vec<PathBuf>) -> PendingGuard {
+        // without a handler an interruption leaves the temporary files; a later run
+        // sweeps them
+        #[cfg(feature = "interrupt")]
         HANDLER.call_once(|| {
-            // without a handler an interruption leaves the temporary files; a later run
-            // sweeps them
             let _ = ctrlc::set_handler(|| {
                 clean_up_pending();
                 std::process::exit(130);
@@ -336,6 +340,7 @@ fn lock_pending() -> std::sync::MutexGuard<'static, Vec<Pending>> {
     PENDING.lock().unwrap_or_else(|e| e.into_inner())
 }
 
+#[cfg_attr(not(feature = "interrupt"), allow(dead_code))]
 fn clean_up_pending() {
     let mut pending = lock_pending();
     for p in pending.drain(..) {
