@@ -448,8 +448,8 @@ fn table_dynamics(r: &SwitchResult) -> String {
     };
     let si = stiction_model::guards::si;
     let mut s = format!(
-        "\nin time: m'' = {} kg/m^2, f0 = {}, gas {} (squeeze film at contact c'' = {})\n",
-        stiction_model::keys::num(d.areal_mass),
+        "\nin time: m'' = {:.4e} kg/m^2, f0 = {}, gas {} (squeeze film at contact c'' = {})\n",
+        d.areal_mass,
         si(d.natural_frequency, "Hz", 4),
         if d.gas_pressure > 0.0 {
             si(d.gas_pressure, "Pa", 4)
