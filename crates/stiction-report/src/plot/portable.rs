@@ -34,8 +34,11 @@ pub fn portable(svg: &str) -> String {
     out
 }
 
+/// (key, value) pairs in the order of the tag.
+type Attributes<'a> = Vec<(&'a str, &'a str)>;
+
 /// The attributes of a start tag `<name a="1" b="2"/>`: (name, [(key, value)], self-closing).
-fn parse(tag: &str) -> Option<(&str, Vec<(&str, &str)>, bool)> {
+fn parse(tag: &str) -> Option<(&str, Attributes<'_>, bool)> {
     let inner = tag.strip_prefix('<')?.strip_suffix('>')?;
     if inner.starts_with(['/', '?', '!']) {
         return None;
