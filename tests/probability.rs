@@ -171,6 +171,25 @@ fn data_lines(svg: &str, points: usize) -> Vec<Vec<(f64, f64)>> {
         .collect()
 }
 
+/// The corner lists of the SVG's polygons of exactly `points` corners.
+fn polygons(svg: &str, points: usize) -> Vec<Vec<(f64, f64)>> {
+    svg.split("<polygon")
+        .skip(1)
+        .filter_map(|p| {
+            let start = p.find("points=\"")? + "points=\"".len();
+            let list = &p[start..start + p[start..].find('"')?];
+            let xy: Vec<(f64, f64)> = list
+                .split_whitespace()
+                .map(|pair| {
+                    let (x, y) = pair.split_once(',').expect("x,y");
+                    (x.parse().unwrap(), y.parse().unwrap())
+                })
+                .collect();
+            (xy.len() == points).then_some(xy)
+        })
+        .collect()
+}
+
 /// erf by its series (|x| < 3 here), to check the CDF without a statistics crate.
 fn erf(x: f64) -> f64 {
     let mut term = x;
@@ -256,19 +275,25 @@ fn shards_merged_equal_one_run_byte_for_byte_on_any_thread_count() {
     assert_eq!(csv.lines().count(), 13);
     let svg = std::fs::read_to_string(dir.join("whole/probability.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("P(stuck by cycle n)"));
-    // the curve and its band: three lines of one point per cycle, the 95 % ends either side
-    for name in [
-        "95 % lower (Clopper-Pearson)",
-        "95 % upper (Clopper-Pearson)",
-    ] {
-        assert!(svg.contains(name), "{name} not in the legend");
-    }
+    // the curve and its shaded band: the band is one polygon along the lower ends and back
+    // along the upper ends, a point per cycle each way
+    assert!(
+        svg.contains("95 % confidence interval (Clopper-Pearson)"),
+        "the band is not in the legend"
+    );
     let lines = data_lines(&svg, 3);
-    assert_eq!(lines.len(), 3, "curve, lower and upper end");
-    let (curve, lower, upper) = (&lines[0], &lines[1], &lines[2]);
+    assert_eq!(lines.len(), 1, "the curve, one point per cycle");
+    let curve = &lines[0];
+    let bands = polygons(&svg, 6);
+    assert_eq!(bands.len(), 1, "one band of 2 x 3 points");
+    let (lower, upper): (Vec<_>, Vec<_>) = (
+        bands[0][..3].to_vec(),
+        bands[0][3..].iter().rev().copied().collect(),
+    );
     for n in 0..3 {
         // SVG y grows downwards: the lower end is drawn at or below the curve
         assert_eq!(curve[n].0, lower[n].0);
+        assert_eq!(curve[n].0, upper[n].0);
         assert!(
             lower[n].1 >= curve[n].1 && curve[n].1 >= upper[n].1,
             "cycle {}",
@@ -276,7 +301,7 @@ fn shards_merged_equal_one_run_byte_for_byte_on_any_thread_count() {
         );
     }
     assert!(
-        upper.iter().zip(lower).any(|(u, l)| u.1 < l.1),
+        upper.iter().zip(&lower).any(|(u, l)| u.1 < l.1),
         "a band of some width"
     );
     // a missing part is named; a map folder and a probability folder do not merge

@@ -62,9 +62,11 @@ pub fn main() -> Result<(), String> {
             series: vec![Series {
                 name: "modes".into(),
                 points: pts,
+                ..Default::default()
             }],
             x_range: None,
             y_range: None,
+            ..Default::default()
         }],
     )?;
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/figures/tradeoff.svg");

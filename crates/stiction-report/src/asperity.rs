@@ -31,10 +31,12 @@ fn plot_svg(r: &AsperityResult) -> Result<String, String> {
         series.push(Series {
             name: format!("loading to {tag}"),
             points: pts(&c.loading),
+            ..Default::default()
         });
         series.push(Series {
             name: format!("unloading from {tag}"),
             points: pts(&c.unloading),
+            ..Default::default()
         });
     }
     plot::svg(
@@ -57,6 +59,7 @@ fn plot_svg(r: &AsperityResult) -> Result<String, String> {
             series,
             x_range: None,
             y_range: None,
+            ..Default::default()
         }],
     )
 }

@@ -55,6 +55,7 @@ fn plot_svg(r: &CalibrationResult) -> Result<String, String> {
                     series: Vec::new(),
                     x_range: None,
                     y_range: None,
+                    ..Default::default()
                 });
                 panels.len() - 1
             }
@@ -62,10 +63,12 @@ fn plot_svg(r: &CalibrationResult) -> Result<String, String> {
         panels[idx].series.push(Series {
             name: format!("FE {}", curve.branch),
             points: data,
+            ..Default::default()
         });
         panels[idx].series.push(Series {
             name: format!("fit {}", curve.branch),
             points: model,
+            ..Default::default()
         });
     }
     // crosses sized on each panel's own ranges

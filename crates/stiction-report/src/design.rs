@@ -259,7 +259,11 @@ fn model_form_svg(
             }
         }
         if !points.is_empty() {
-            series.push(crate::plot::Series { name, points });
+            series.push(crate::plot::Series {
+                name,
+                points,
+                ..Default::default()
+            });
         }
     }
     let title =
@@ -282,10 +286,11 @@ fn model_form_svg(
                 m.share_sticking.iter().flatten().count()
             ),
             x_label,
-            y_label: "share that sticks (-)".into(),
+            y_label: "share that sticks [-]".into(),
             series,
             x_range: None,
             y_range: Some((0.0, 1.0)),
+            ..Default::default()
         }],
     )
 }

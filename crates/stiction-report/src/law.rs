@@ -29,6 +29,7 @@ fn plot_svg(law: &ContactLaw, h: &Histories, title: &str, sigma: f64) -> Result<
     let mut series = vec![Series {
         name: "virgin envelope".into(),
         points: pts(law.virgin().d(), law.virgin().pressure()),
+        ..Default::default()
     }];
     let grid = law.d_min_grid();
     let mut picks: Vec<usize> = Vec::new();
@@ -52,10 +53,12 @@ fn plot_svg(law: &ContactLaw, h: &Histories, title: &str, sigma: f64) -> Result<
         series.push(Series {
             name: format!("approach, d_min = {label}"),
             points: pts(b.approach().d(), b.approach().pressure()),
+            ..Default::default()
         });
         series.push(Series {
             name: format!("retract, d_min = {label}"),
             points: pts(b.retract().d(), b.retract().pressure()),
+            ..Default::default()
         });
         tensile = tensile.max(-b.pull_out().pressure);
     }
@@ -73,6 +76,7 @@ fn plot_svg(law: &ContactLaw, h: &Histories, title: &str, sigma: f64) -> Result<
         series: series.clone(),
         x_range: Some((h.d_min_lo * 1e9, x_end * 1e9)),
         y_range: (whole_y.1 > whole_y.0).then_some((1.05 * whole_y.0, 1.05 * whole_y.1)),
+        ..Default::default()
     }];
     if tensile > 0.0 {
         let y = 1.5 * tensile * 1e-6;
@@ -83,6 +87,7 @@ fn plot_svg(law: &ContactLaw, h: &Histories, title: &str, sigma: f64) -> Result<
             series,
             x_range: Some((h.d_min_lo * 1e9, x_end * 1e9)),
             y_range: Some((-y, y)),
+            ..Default::default()
         });
     }
     plot::svg(&format!("{title}: contact law"), &panels)

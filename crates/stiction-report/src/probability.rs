@@ -4,7 +4,7 @@
 //! model_form.json.
 
 use crate::output::OutputSet;
-use crate::plot::{svg, Panel, Series};
+use crate::plot::{svg, Band, Panel, Series};
 use crate::render::{self, Format, Render, Validity, Warning};
 use crate::{Plot, Report, ReportError};
 use serde::Serialize;
@@ -93,24 +93,25 @@ impl ProbabilityReport {
                 .map(|c| (c.cycle as f64, f(c)))
                 .collect::<Vec<_>>()
         };
-        let mut series = vec![
-            Series {
-                name: "P(stuck by cycle n)".into(),
-                points: line(&|c| c.probability),
-            },
-            Series {
-                name: format!("{pct} lower (Clopper-Pearson)"),
-                points: line(&|c| c.ci_low),
-            },
-            Series {
-                name: format!("{pct} upper (Clopper-Pearson)"),
-                points: line(&|c| c.ci_high),
-            },
-        ];
+        let mut series = vec![Series {
+            name: "P(stuck by cycle n)".into(),
+            points: line(&|c| c.probability),
+            ..Default::default()
+        }];
+        let band = Band {
+            name: format!("{pct} confidence interval (Clopper-Pearson)"),
+            points: s
+                .by_cycle
+                .iter()
+                .map(|c| (c.cycle as f64, c.ci_low, c.ci_high))
+                .collect(),
+            colour: Some(crate::plot::SERIES[2]),
+        };
         if let Some(p) = self.run.exact().and_then(|e| e.stiction_probability) {
             series.push(Series {
                 name: "exact after accommodation (threshold + CDF)".into(),
                 points: vec![(1.0, p), (cycles as f64, p)],
+                ..Default::default()
             });
         }
         let top = s
@@ -133,11 +134,13 @@ impl ProbabilityReport {
                 s.counts.out_of_domain,
                 s.counts.failed
             ),
-            x_label: "cycle n".into(),
-            y_label: "P(stuck by cycle n)".into(),
+            x_label: "cycle n [count]".into(),
+            y_label: "P(stuck by cycle n) [-]".into(),
             series,
+            bands: vec![band],
             x_range: Some((1.0, (cycles as f64).max(2.0))),
             y_range: Some((0.0, (1.1 * top).clamp(0.05, 1.0))),
+            ..Default::default()
         };
         let title = self.labels.title.clone().unwrap_or_else(|| {
             format!(

@@ -21,15 +21,18 @@ fn plot_svg(r: &SurfaceResult) -> Result<String, String> {
     let mut series = vec![Series {
         name: "virgin loading".into(),
         points: pts(&r.loading),
+        ..Default::default()
     }];
     if !r.unloading.is_empty() {
         series.push(Series {
             name: "unloading".into(),
             points: pts(&r.unloading),
+            ..Default::default()
         });
         series.push(Series {
             name: "reloading".into(),
             points: pts(&r.reloading),
+            ..Default::default()
         });
     }
     let mut panels = vec![Panel {
@@ -39,6 +42,7 @@ fn plot_svg(r: &SurfaceResult) -> Result<String, String> {
         series: series.clone(),
         x_range: None,
         y_range: None,
+        ..Default::default()
     }];
     if let Some(p) = r.pull_out_pressure.filter(|&p| p > 0.0) {
         let y = p * 1e-6;
@@ -49,6 +53,7 @@ fn plot_svg(r: &SurfaceResult) -> Result<String, String> {
             series,
             x_range: None,
             y_range: Some((-1.5 * y, 1.5 * y)),
+            ..Default::default()
         });
     }
     plot::svg(&r.title, &panels)

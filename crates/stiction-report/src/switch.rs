@@ -86,9 +86,11 @@ fn plot_dynamics_svg(r: &SwitchResult) -> Option<Result<String, String>> {
                     .iter()
                     .map(|p| (t(p), p.displacement * 1e6))
                     .collect(),
+                ..Default::default()
             }],
             x_range: None,
             y_range: None,
+            ..Default::default()
         },
         Panel {
             caption: "cycle 1: the contact pressure (per contact area)".into(),
@@ -101,31 +103,37 @@ fn plot_dynamics_svg(r: &SwitchResult) -> Option<Result<String, String>> {
                     .iter()
                     .map(|p| (t(p), p.contact_pressure * 1e-6))
                     .collect(),
+                ..Default::default()
             }],
             x_range: None,
             y_range: None,
+            ..Default::default()
         },
         Panel {
             caption: "kinetic energy where each closure's contact begins".into(),
-            x_label: "cycle".into(),
+            x_label: "cycle [count]".into(),
             y_label: "impact energy [J/m^2]".into(),
             series: vec![Series {
                 name: "impact energy (per electrode area)".into(),
                 points: cycles(&|c| c.impact.map(|i| i.energy)),
+                ..Default::default()
             }],
             x_range: Some((0.5, n + 0.5)),
             y_range: None,
+            ..Default::default()
         },
         Panel {
             caption: "bounces per closure".into(),
-            x_label: "cycle".into(),
-            y_label: "bounces".into(),
+            x_label: "cycle [count]".into(),
+            y_label: "bounces [count]".into(),
             series: vec![Series {
                 name: "bounces".into(),
                 points: cycles(&|c| c.bounces.map(|b| b as f64)),
+                ..Default::default()
             }],
             x_range: Some((0.5, n + 0.5)),
             y_range: None,
+            ..Default::default()
         },
     ];
     Some(crate::plot::svg(&format!("{}: in time", r.title), &panels))
@@ -162,15 +170,23 @@ fn plot_svg(r: &SwitchResult) -> Result<String, String> {
         }
         l
     };
+    // one colour per drawn cycle, the same in both panels; the loading black, the
+    // elastic reference and the spring after the cycles
+    let colour = |k: usize| {
+        let i = picks.iter().position(|&p| p == k).unwrap_or(0);
+        plot::SERIES[(1 + i) % plot::SERIES.len()]
+    };
     let mut whole = vec![Series {
         name: "loading (cycle 1)".into(),
         points: pts(&r.loading),
+        colour: Some(plot::SERIES[0]),
     }];
     let mut wells = Vec::new();
     for c in r.cycles.iter().filter(|c| picks.contains(&c.cycle)) {
         whole.push(Series {
             name: format!("unloading, {}", label(c.cycle)),
             points: pts(&c.unloading),
+            colour: Some(colour(c.cycle)),
         });
         wells.push(Series {
             name: format!("unloading, {}", label(c.cycle)),
@@ -179,12 +195,15 @@ fn plot_svg(r: &SwitchResult) -> Result<String, String> {
             } else {
                 &c.well
             }),
+            colour: Some(colour(c.cycle)),
         });
     }
+    let after = |k: usize| Some(plot::SERIES[(1 + picks.len() + k) % plot::SERIES.len()]);
     if let Some(e) = &r.elastic {
         let s = Series {
             name: "unloading, elastic asperities".into(),
             points: pts(&e.unloading),
+            colour: after(0),
         };
         whole.push(s.clone());
         wells.push(s);
@@ -200,6 +219,7 @@ fn plot_svg(r: &SwitchResult) -> Result<String, String> {
     let spring = Series {
         name: "- restoring pressure K_s d0 / phi".into(),
         points: vec![(x0, restoring), (x1, restoring)],
+        colour: after(1),
     };
     whole.push(spring.clone());
     wells.push(spring);
@@ -231,6 +251,7 @@ fn plot_svg(r: &SwitchResult) -> Result<String, String> {
             series: whole,
             x_range: Some((x0, x1)),
             y_range: None,
+            ..Default::default()
         },
         Panel {
             caption: format!(
@@ -246,10 +267,20 @@ fn plot_svg(r: &SwitchResult) -> Result<String, String> {
             series: wells,
             x_range: Some(zoom_x),
             y_range: Some((-1.6 * well, 1.0 * well)),
+            ..Default::default()
         },
     ];
     panels.extend(contact_panels(r));
     plot::svg(&r.title, &panels)
+}
+
+/// The hold as the scene gave it: a force (N) when `hold_force` was given, else the
+/// voltage (V).
+fn hold_words(r: &SwitchResult) -> String {
+    match r.hold_force {
+        Some(f) => format!("{} N", crate::plot::map::fmt_sig(f, 4)),
+        None => format!("{:.4} V", r.hold_voltage),
+    }
 }
 
 /// The contact against cycle: real contact area (and, with conduction, the contact
@@ -268,40 +299,62 @@ fn contact_panels(r: &SwitchResult) -> Vec<Panel> {
             .filter_map(|c| Some((c.cycle as f64, pick(c.end_of_impact.as_ref()?)? * scale)))
             .collect();
         [
-            (
-                format!("{name} under the hold ({:.4} V)", r.hold_voltage),
-                hold,
-            ),
+            (format!("{name} under the hold ({})", hold_words(r)), hold),
             (format!("{name} at the end of impact"), end),
         ]
         .into_iter()
         .filter(|(_, p)| !p.is_empty())
-        .map(|(name, points)| Series { name, points })
+        .map(|(name, points)| Series {
+            name,
+            points,
+            ..Default::default()
+        })
         .collect()
     };
     let last = r.cycles.last().map_or(1.0, |c| c.cycle as f64);
     let x_range = Some((0.5, last + 0.5));
     let mut out = Vec::new();
-    let area = series("A_r / A", |c| Some(c.real_contact_fraction), 100.0);
+    let mut area = series("A_r / A", |c| Some(c.real_contact_fraction), 100.0);
     if !area.is_empty() {
+        // more real contact than contact area is impossible: flagged, with the 100 % line
+        let most = area
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.1))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let mut flags = Vec::new();
+        if most > 100.0 {
+            flags.push(format!(
+                "IMPOSSIBLE: A_r / A reaches {} %, more real contact than contact area: \
+                 the model is outside its validity here",
+                crate::plot::map::fmt_sig(most, 3)
+            ));
+            area.push(Series {
+                name: "A_r = A (100 %): above is impossible".into(),
+                points: vec![(0.5, 100.0), (last + 0.5, 100.0)],
+                colour: Some(plot::STICK),
+            });
+        }
         out.push(Panel {
+            flags,
             caption: "real contact area against cycle".into(),
-            x_label: "cycle".into(),
+            x_label: "cycle [count]".into(),
             y_label: "real contact area [% of the contact area]".into(),
             series: area,
             x_range,
             y_range: None,
+            ..Default::default()
         });
     }
     let resistance = series("R", |c| c.contact_resistance, 1e3);
     if !resistance.is_empty() {
         out.push(Panel {
             caption: "contact resistance against cycle (spots in parallel, Holm-Sharvin)".into(),
-            x_label: "cycle".into(),
+            x_label: "cycle [count]".into(),
             y_label: "contact resistance [mOhm]".into(),
             series: resistance,
             x_range,
             y_range: None,
+            ..Default::default()
         });
     }
     out

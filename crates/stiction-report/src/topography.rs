@@ -247,32 +247,82 @@ fn plot_svg(r: &TopographyReport) -> Result<String, String> {
                     (a.min(z), b.max(z))
                 });
         let (w, h) = (m.nx as f64 * m.dx * 1e6, m.ny as f64 * m.dy * 1e6);
-        let mut c = ChartBuilder::on(&panels[0])
-            .caption("height map (detrended)", ("sans-serif", 16))
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(45)
+        let span = (zmax - zmin).max(f64::MIN_POSITIVE);
+        let colour = |v: f64| {
+            let v = v.clamp(0.0, 1.0);
+            let g = (255.0 * v) as u8;
+            RGBColor(g, g, (64.0 + 191.0 * v) as u8)
+        };
+        // the map at its true aspect (1 um is as long across as up), a colour bar beside it
+        let (map_area, bar_area) = panels[0].split_horizontally(310);
+        let map_area = map_area
+            .titled("height map (detrended)", ("sans-serif", 16))
+            .map_err(|x| e(&x))?;
+        let (aw, ah) = map_area.dim_in_pixel();
+        let (label_x, label_y, pad) = (35u32, 55u32, 10u32);
+        let room_w = f64::from(aw.saturating_sub(label_y + 2 * pad).max(10));
+        let room_h = f64::from(ah.saturating_sub(label_x + 2 * pad).max(10));
+        let px = (room_w / w.max(f64::MIN_POSITIVE)).min(room_h / h.max(f64::MIN_POSITIVE));
+        let (extra_w, extra_h) = (
+            ((room_w - px * w) / 2.0).max(0.0) as u32,
+            ((room_h - px * h) / 2.0).max(0.0) as u32,
+        );
+        let mut c = ChartBuilder::on(&map_area)
+            .margin_left(pad + extra_w)
+            .margin_right(pad + extra_w)
+            .margin_top(pad + extra_h)
+            .margin_bottom(pad + extra_h)
+            .x_label_area_size(label_x)
+            .y_label_area_size(label_y)
             .build_cartesian_2d(0.0..w, 0.0..h)
             .map_err(|x| e(&x))?;
         c.configure_mesh()
             .disable_mesh()
             .x_desc("x [um]")
             .y_desc("y [um]")
+            .x_labels(4)
             .draw()
             .map_err(|x| e(&x))?;
-        let span = (zmax - zmin).max(f64::MIN_POSITIVE);
         c.draw_series((0..m.ny).flat_map(|j| {
             (0..m.nx).map(move |i| {
                 let v = (m.z[j * m.nx + i] - zmin) / span;
-                let g = (255.0 * v) as u8;
                 Rectangle::new(
                     [
                         (i as f64 * m.dx * 1e6, j as f64 * m.dy * 1e6),
                         ((i + 1) as f64 * m.dx * 1e6, (j + 1) as f64 * m.dy * 1e6),
                     ],
-                    RGBColor(g, g, (64.0 + 191.0 * v) as u8).filled(),
+                    colour(v).filled(),
                 )
             })
+        }))
+        .map_err(|x| e(&x))?;
+        // the colour bar: height in nm
+        let (z0, z1) = (zmin * 1e9, zmin * 1e9 + span * 1e9);
+        let mut bar = ChartBuilder::on(&bar_area)
+            .margin_top(40)
+            .margin_bottom(45)
+            .margin_right(8)
+            .x_label_area_size(0)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0..1.0, z0..z1)
+            .map_err(|x| e(&x))?;
+        bar.configure_mesh()
+            .disable_mesh()
+            .disable_x_axis()
+            .y_desc("height [nm]")
+            .y_labels(6)
+            .draw()
+            .map_err(|x| e(&x))?;
+        let steps = 64;
+        bar.draw_series((0..steps).map(|k| {
+            let (a, b) = (
+                z0 + (z1 - z0) * k as f64 / steps as f64,
+                z0 + (z1 - z0) * (k + 1) as f64 / steps as f64,
+            );
+            Rectangle::new(
+                [(0.0, a), (1.0, b)],
+                colour((k as f64 + 0.5) / steps as f64).filled(),
+            )
         }))
         .map_err(|x| e(&x))?;
         // summit heights against the Gaussian
@@ -368,7 +418,7 @@ fn plot_svg(r: &TopographyReport) -> Result<String, String> {
         }
         root.present().map_err(|x| e(&x))?;
     }
-    Ok(buf)
+    Ok(crate::plot::portable(&buf))
 }
 
 impl TopographyResult {

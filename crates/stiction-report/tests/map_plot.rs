@@ -155,7 +155,10 @@ fn one_d_svg_with_a_log_grid_is_well_formed() {
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let texts = common::svg_texts(&doc);
     assert!(texts.contains(&"k_s sweep"));
-    assert!(texts.contains(&"pull-out ratio (log scale)"), "{texts:?}");
+    assert!(
+        texts.contains(&"pull-out ratio [-] (log scale)"),
+        "{texts:?}"
+    );
     // decade tick labels on the log x axis and the log ratio axis
     for tick in ["100", "1000", "10000", "1e5", "0.01", "1"] {
         assert!(texts.contains(&tick), "{tick}: {texts:?}");

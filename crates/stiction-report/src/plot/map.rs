@@ -8,6 +8,7 @@ use super::{FREE, NO_CLOSE, SERIES, STICK};
 use crate::ReportError;
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::ops::Range;
 use stiction_model::design_sweep::{contour_plotted, Axis, Labels, Map, MapPoint, Spacing, Status};
 
@@ -43,7 +44,7 @@ pub fn map_svg(map: &Map, labels: &Labels) -> Result<String, ReportError> {
         }
         _ => draw_2d(map, labels, &mut buf)?,
     }
-    Ok(buf)
+    Ok(super::portable(&buf))
 }
 
 /// A plotted axis: range, tick marks and how to label them.
@@ -368,7 +369,9 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportErr
     }
     let markers = chart
         .draw_series(pts.iter().filter_map(|(x, p)| {
-            let d = p.design.filter(|_| p.status == Status::Ok)?;
+            let d = p
+                .design
+                .filter(|d| p.status == Status::Ok && d.validity_holds)?;
             (d.pull_out_ratio > 0.0).then(|| {
                 let c = if d.pull_out_ratio < 1.0 { FREE } else { STICK };
                 let size = if categorical { 7 } else { 4 };
@@ -381,6 +384,12 @@ fn draw_1d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportErr
             .label("pull-out ratio of each word (red: sticks, blue: free)")
             .legend(|(x, y)| Circle::new((x + 10, y), 5, STICK.filled()));
     }
+    draw_invalid(
+        &mut chart,
+        pts.iter().map(|(x, p)| (*x, *p)),
+        &to_y,
+        if categorical { 7 } else { 5 },
+    )?;
     if let Some(r) = map.requirement() {
         let ring = GREEN.stroke_width(2);
         chart
@@ -437,9 +446,19 @@ fn chart_on<'a, 'b>(
     (xs, ys): (&Scale, &Scale),
     (y_label_width, bottom_margin): (u32, u32),
 ) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticked, Ticked>>, ReportError> {
+    // the title, wrapped to the area's width
+    let (w, _) = area.dim_in_pixel();
+    let lines = super::wrap(&title, f64::from(w.saturating_sub(30)), 22.0);
+    let style = (FONT, 22)
+        .into_text_style(area)
+        .pos(Pos::new(HPos::Center, VPos::Top));
+    for (k, line) in lines.iter().enumerate() {
+        area.draw_text(line, &style, ((w / 2) as i32, 10 + 28 * k as i32))
+            .map_err(plot_err)?;
+    }
     ChartBuilder::on(area)
-        .caption(title, (FONT, 22))
         .margin(15)
+        .margin_top(15 + 28 * lines.len() as u32)
         .margin_bottom(bottom_margin)
         .x_label_area_size(50)
         .y_label_area_size(y_label_width)
@@ -464,9 +483,9 @@ fn ratio_frame<'a, 'b>(
         .configure_mesh()
         .x_desc(x_desc)
         .y_desc(if log_y {
-            "pull-out ratio (log scale)"
+            "pull-out ratio [-] (log scale)"
         } else {
-            "pull-out ratio"
+            "pull-out ratio [-]"
         })
         .x_label_formatter(&xf)
         .y_label_formatter(&yf)
@@ -496,6 +515,41 @@ fn positive_runs(pts: &[(f64, &MapPoint)], to_y: impl Fn(f64) -> f64) -> Vec<Vec
         }
     }
     runs
+}
+
+/// The colour of a point outside the model's validity: a hollow grey ring.
+pub const INVALID: RGBColor = RGBColor(120, 120, 120);
+
+/// A design point that closes but lies outside the model's validity (a guard fired): its
+/// ratio is the model's answer where the model does not hold.
+fn invalid(p: &MapPoint) -> bool {
+    p.status == Status::Ok
+        && p.design
+            .is_some_and(|d| !d.validity_holds && d.pull_out_ratio > 0.0)
+}
+
+/// Hollow grey rings (radius `size`) on the points outside the model's validity, with
+/// their legend entry; nothing when every point is valid.
+fn draw_invalid<'a, 'b, 'p>(
+    chart: &mut ChartContext<'a, SVGBackend<'b>, Cartesian2d<Ticked, Ticked>>,
+    pts: impl Iterator<Item = (f64, &'p MapPoint)>,
+    to_y: &dyn Fn(f64) -> f64,
+    size: i32,
+) -> Result<(), ReportError> {
+    let rings: Vec<(f64, f64)> = pts
+        .filter(|(_, p)| invalid(p))
+        .filter_map(|(x, p)| Some((x, to_y(p.ratio()?))))
+        .collect();
+    if rings.is_empty() {
+        return Ok(());
+    }
+    let st = INVALID.stroke_width(2);
+    chart
+        .draw_series(rings.iter().map(|&c| Circle::new(c, size, st)))
+        .map_err(plot_err)?
+        .label("outside the model's validity (hollow grey)")
+        .legend(move |(x, y)| Circle::new((x + 10, y), 5, st));
+    Ok(())
 }
 
 /// A map over a categorical and a numeric axis: the ratio against the numeric field, one
@@ -608,6 +662,12 @@ fn draw_by_word(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), Repo
                 .legend(move |(x, y)| Cross::new((x + 10, y), 6, st));
         }
     }
+    draw_invalid(
+        &mut chart,
+        curves.iter().flatten().map(|(x, p)| (*x, *p)),
+        &to_y,
+        7,
+    )?;
     if map
         .points()
         .iter()
@@ -733,10 +793,49 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportErr
             map.accuracy()
         )
     });
+    // the legend under the map, wrapped; what it names is known before drawing
+    let any_no_close = map.points().iter().any(|p| {
+        matches!(p.status, Status::Ok | Status::DoesNotClose)
+            && p.ratio()
+                .is_some_and(|r| !(p.status == Status::Ok && r > 0.0))
+    });
+    let any_failed = map
+        .points()
+        .iter()
+        .any(|p| !(matches!(p.status, Status::Ok | Status::DoesNotClose) && p.ratio().is_some()));
+    let any_invalid = map.points().iter().any(invalid);
+    let any_window = !map.window().is_empty();
+    let mut legend = String::from(if g.has_categorical() {
+        "red sticks, blue free, white at ratio = 1 (no contour between words)"
+    } else {
+        "black line: ratio = 1 (stiction boundary); red sticks, blue free"
+    });
+    if any_no_close {
+        legend.push_str("; grey: does not close (not free)");
+    }
+    if any_failed {
+        legend.push_str("; x: failed or out of domain");
+    }
+    if any_invalid {
+        legend.push_str("; grey ring: outside the model's validity");
+    }
+    if let Some(r) = map.requirement() {
+        legend.push_str(&if any_window {
+            format!("; green frame: free and {r}")
+        } else {
+            format!("; no point free and {r}")
+        });
+    }
+    let legend_lines = super::wrap(&legend, 740.0, 14.0);
     let root = SVGBackend::with_string(buf, (980, 720)).into_drawing_area();
     root.fill(&WHITE).map_err(plot_err)?;
     let (main, bar) = root.split_horizontally(850);
-    let mut chart = chart_on(&main, title, (&xs, &ys), (90, 35))?;
+    let mut chart = chart_on(
+        &main,
+        title,
+        (&xs, &ys),
+        (90, 17 + 18 * legend_lines.len() as u32),
+    )?;
     let xf = |t: &f64| xs.label(*t);
     let yf = |t: &f64| ys.label(*t);
     chart
@@ -751,7 +850,6 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportErr
         .draw()
         .map_err(plot_err)?;
 
-    let (mut any_no_close, mut any_failed) = (false, false);
     let mut cells = Vec::new();
     let mut crosses = Vec::new();
     for p in map.points() {
@@ -759,12 +857,8 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportErr
         let ((x0, x1), (y0, y1)) = (ex[idx[0]], ey[idx[1]]);
         let fill = match (&p.status, p.ratio()) {
             (Status::Ok, Some(r)) if r > 0.0 => shade(r.log10()),
-            (Status::Ok | Status::DoesNotClose, Some(_)) => {
-                any_no_close = true;
-                NO_CLOSE
-            }
+            (Status::Ok | Status::DoesNotClose, Some(_)) => NO_CLOSE,
             _ => {
-                any_failed = true;
                 crosses.push((0.5 * (x0 + x1), 0.5 * (y0 + y1)));
                 WHITE
             }
@@ -782,13 +876,30 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportErr
             Rectangle::new([(x0, y0), (x1, y1)], GREEN.stroke_width(3))
         })
         .collect();
-    let any_window = !window.is_empty();
     chart.draw_series(window).map_err(plot_err)?;
     chart
         .draw_series(
             crosses
                 .iter()
                 .map(|&c| Cross::new(c, 6, BLACK.stroke_width(2))),
+        )
+        .map_err(plot_err)?;
+    // points outside the model's validity: a hollow grey ring in the cell
+    let rings: Vec<(f64, f64)> = map
+        .points()
+        .iter()
+        .filter(|p| invalid(p))
+        .map(|p| {
+            let idx = g.indices(p.index);
+            let ((x0, x1), (y0, y1)) = (ex[idx[0]], ey[idx[1]]);
+            (0.5 * (x0 + x1), 0.5 * (y0 + y1))
+        })
+        .collect();
+    chart
+        .draw_series(
+            rings
+                .iter()
+                .map(|&c| Circle::new(c, 5, INVALID.stroke_width(2))),
         )
         .map_err(plot_err)?;
     for line in contour_plotted(map) {
@@ -799,26 +910,14 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportErr
             )))
             .map_err(plot_err)?;
     }
-    let mut legend = String::from(if g.has_categorical() {
-        "red sticks, blue free, white at ratio = 1 (no contour between words)"
-    } else {
-        "black line: ratio = 1 (stiction boundary); red sticks, blue free"
-    });
-    if any_no_close {
-        legend.push_str("; grey: does not close (not free)");
-    }
-    if any_failed {
-        legend.push_str("; x: failed or out of domain");
-    }
-    if let Some(r) = map.requirement() {
-        legend.push_str(&if any_window {
-            format!("; green frame: free and {r}")
-        } else {
-            format!("; no point free and {r}")
-        });
-    }
-    main.draw_text(&legend, &(FONT, 14).into_text_style(&main), (95, 720 - 22))
+    for (k, line) in legend_lines.iter().enumerate() {
+        main.draw_text(
+            line,
+            &(FONT, 14).into_text_style(&main),
+            (95, 720 - 22 - 18 * (legend_lines.len() - 1 - k) as i32),
+        )
         .map_err(plot_err)?;
+    }
 
     // colour bar
     let bs = Scale::new(lo, hi, false);
@@ -834,7 +933,7 @@ fn draw_2d(map: &Map, labels: &Labels, buf: &mut String) -> Result<(), ReportErr
     cb.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
-        .y_desc("log10 ratio")
+        .y_desc("log10 ratio [-] (pull-out over restoring)")
         .y_label_formatter(&bf)
         .label_style((FONT, 15))
         .axis_desc_style((FONT, 16))

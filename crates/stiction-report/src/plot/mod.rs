@@ -8,29 +8,52 @@
 //! does. Maps of the pull-out ratio: [`map::map_svg`].
 
 pub mod map;
+mod portable;
+
+pub use portable::portable;
 
 use plotters::prelude::*;
 
 /// One named line.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Series {
     /// Legend text.
     pub name: String,
     /// (x, y) in plot units.
     pub points: Vec<(f64, f64)>,
+    /// Its colour; else the panel's next of [`SERIES`]. A quantity drawn in several panels
+    /// (a cycle) is given the same colour in each.
+    pub colour: Option<RGBColor>,
+}
+
+/// A shaded band between two lines (a confidence interval), drawn under the lines.
+#[derive(Debug, Clone, Default)]
+pub struct Band {
+    /// Legend text.
+    pub name: String,
+    /// (x, lower, upper) in plot units.
+    pub points: Vec<(f64, f64, f64)>,
+    /// Its colour (shaded at a quarter); else the first of [`SERIES`].
+    pub colour: Option<RGBColor>,
 }
 
 /// One panel of a figure.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Panel {
-    /// Panel caption.
+    /// Panel caption (wrapped to the panel's width).
     pub caption: String,
-    /// x-axis label with unit.
+    /// x-axis label with unit; one that starts with "cycle" is a count, labelled at whole
+    /// numbers only.
     pub x_label: String,
     /// y-axis label with unit.
     pub y_label: String,
     /// The lines.
     pub series: Vec<Series>,
+    /// Shaded bands under the lines.
+    pub bands: Vec<Band>,
+    /// Warnings drawn in red under the caption (an impossible value, a point outside the
+    /// model's validity).
+    pub flags: Vec<String>,
     /// Fixed x range (else the data's).
     pub x_range: Option<(f64, f64)>,
     /// Fixed y range (else the data's, padded).
@@ -125,10 +148,15 @@ pub fn clip(
 }
 
 fn data_range(panel: &Panel, axis: usize) -> (f64, f64) {
+    let bands = panel
+        .bands
+        .iter()
+        .flat_map(|b| b.points.iter().flat_map(|&(x, lo, hi)| [(x, lo), (x, hi)]));
     let vals = panel
         .series
         .iter()
-        .flat_map(|s| s.points.iter())
+        .flat_map(|s| s.points.iter().copied())
+        .chain(bands)
         .map(|p| if axis == 0 { p.0 } else { p.1 })
         .filter(|v| v.is_finite());
     let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
@@ -146,73 +174,216 @@ fn data_range(panel: &Panel, axis: usize) -> (f64, f64) {
     }
 }
 
-/// An SVG of `panels` stacked vertically under `title`.
+/// The width of a character of sans-serif text, over the font size: an estimate on the
+/// wide side (DejaVu Sans, what rsvg picks, averages about 0.55 on words), so that text
+/// measured with it fits.
+pub const CHAR_WIDTH: f64 = 0.6;
+
+/// `text` broken at spaces (or, for a word too long, inside it) into lines that fit `width`
+/// pixels at `font` pixels, by the estimate [`CHAR_WIDTH`].
+pub fn wrap(text: &str, width: f64, font: f64) -> Vec<String> {
+    let most = ((width / (CHAR_WIDTH * font)).floor() as usize).max(8);
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        let mut word: Vec<char> = word.chars().collect();
+        while word.len() > most {
+            if !line.is_empty() {
+                lines.push(std::mem::take(&mut line));
+            }
+            lines.push(word.drain(..most).collect());
+        }
+        let word: String = word.into_iter().collect();
+        let n = line.chars().count();
+        if n > 0 && n + 1 + word.chars().count() > most {
+            lines.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(&word);
+    }
+    if !line.is_empty() || lines.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
+/// Figure width (px).
+const WIDTH: u32 = 960;
+/// Height of one panel's chart (px), beside its caption and flags.
+const PANEL: u32 = 520;
+/// Line height of the title, a caption, a flag (px).
+const TITLE_LINE: u32 = 30;
+const CAPTION_LINE: u32 = 23;
+
+/// Where a count on the x axis is labelled: whole numbers, at most about 10 of them.
+fn whole_step(span: f64) -> f64 {
+    let raw = (span / 10.0).max(1.0);
+    let mag = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * mag)
+        .find(|s| *s >= raw - 1e-9)
+        .unwrap_or(10.0 * mag)
+}
+
+/// An SVG of `panels` stacked vertically under `title`; the title and captions wrap to the
+/// figure's width, a panel's flags are drawn in red under its caption, its bands shaded
+/// under its lines.
 pub fn svg(title: &str, panels: &[Panel]) -> Result<String, String> {
+    let e = |e: &dyn std::fmt::Display| e.to_string();
+    let inner = f64::from(WIDTH - 40);
+    let title_lines = wrap(title, inner, 24.0);
+    let captions: Vec<Vec<String>> = panels
+        .iter()
+        .map(|p| {
+            if p.caption.is_empty() {
+                Vec::new()
+            } else {
+                wrap(&p.caption, inner, 18.0)
+            }
+        })
+        .collect();
+    let flags: Vec<Vec<String>> = panels
+        .iter()
+        .map(|p| p.flags.iter().flat_map(|f| wrap(f, inner, 16.0)).collect())
+        .collect();
+    let heights: Vec<u32> = captions
+        .iter()
+        .zip(&flags)
+        .map(|(c, f)| PANEL + CAPTION_LINE * (c.len() + f.len()) as u32)
+        .collect();
     let mut out = String::new();
     {
-        let height = 80 + 520 * panels.len() as u32;
-        let root = SVGBackend::with_string(&mut out, (960, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let root = root
-            .titled(title, ("sans-serif", 24))
-            .map_err(|e| e.to_string())?;
-        let areas = root.split_evenly((panels.len(), 1));
-        for (panel, area) in panels.iter().zip(areas.iter()) {
-            let xr = panel.x_range.unwrap_or_else(|| data_range(panel, 0));
-            let yr = panel.y_range.unwrap_or_else(|| data_range(panel, 1));
-            let mut chart = ChartBuilder::on(area)
-                .caption(&panel.caption, ("sans-serif", 18))
-                .margin(12)
-                .x_label_area_size(45)
-                .y_label_area_size(80)
-                .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
-                .map_err(|e| e.to_string())?;
-            // a count on the x axis (cycles) is labelled at whole numbers only
-            let counted = panel.x_label == "cycle";
-            let whole = |x: &f64| {
-                if x.fract().abs() < 1e-9 {
-                    format!("{x:.0}")
-                } else {
-                    String::new()
-                }
-            };
-            let span = (xr.1 - xr.0).round().max(1.0) as usize;
-            let mut mesh = chart.configure_mesh();
-            mesh.x_desc(&panel.x_label).y_desc(&panel.y_label);
-            if counted {
-                mesh.x_labels(2 * span + 1).x_label_formatter(&whole);
-            }
-            mesh.draw().map_err(|e| e.to_string())?;
-            for (i, s) in panel.series.iter().enumerate() {
-                let c = SERIES[i % SERIES.len()];
-                let runs = clip(&s.points, xr, yr);
-                for (k, run) in runs.iter().enumerate() {
-                    let drawn = chart
-                        .draw_series(LineSeries::new(run.iter().copied(), c.stroke_width(2)))
-                        .map_err(|e| e.to_string())?;
-                    if k == 0 {
-                        drawn.label(s.name.clone()).legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
-                        });
-                    }
-                }
-            }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .position(SeriesLabelPosition::LowerRight)
-                .draw()
-                .map_err(|e| e.to_string())?;
+        let height = 20 + TITLE_LINE * title_lines.len() as u32 + heights.iter().sum::<u32>();
+        let root = SVGBackend::with_string(&mut out, (WIDTH, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|x| e(&x))?;
+        let mut root = root.margin(10, 0, 0, 0);
+        for line in &title_lines {
+            root = root.titled(line, ("sans-serif", 24)).map_err(|x| e(&x))?;
         }
-        root.present().map_err(|e| e.to_string())?;
+        let mut rest = root;
+        for (k, panel) in panels.iter().enumerate() {
+            let (mut area, below) = rest.split_vertically(heights[k]);
+            rest = below;
+            for line in &captions[k] {
+                area = area.titled(line, ("sans-serif", 18)).map_err(|x| e(&x))?;
+            }
+            for line in &flags[k] {
+                let style = ("sans-serif", 16).into_font().color(&STICK);
+                area = area.titled(line, style).map_err(|x| e(&x))?;
+            }
+            draw_panel(&area, panel).map_err(|x| e(&x))?;
+        }
+        rest.present().map_err(|x| e(&x))?;
     }
-    Ok(out)
+    Ok(portable(&out))
+}
+
+type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
+
+fn draw_panel(area: &Area<'_>, panel: &Panel) -> Result<(), String> {
+    let e = |e: &dyn std::fmt::Display| e.to_string();
+    let xr = panel.x_range.unwrap_or_else(|| data_range(panel, 0));
+    let yr = panel.y_range.unwrap_or_else(|| data_range(panel, 1));
+    let mut chart = ChartBuilder::on(area)
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(80)
+        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+        .map_err(|x| e(&x))?;
+    // a count on the x axis (cycles) is labelled at whole numbers only
+    let counted = panel.x_label.starts_with("cycle");
+    let step = whole_step(xr.1 - xr.0);
+    let whole = |x: &f64| {
+        let k = (x / step).round();
+        if (x - k * step).abs() < 1e-9 * step.max(1.0) {
+            format!("{:.0}", k * step)
+        } else {
+            String::new()
+        }
+    };
+    let mut mesh = chart.configure_mesh();
+    mesh.x_desc(&panel.x_label).y_desc(&panel.y_label);
+    if counted {
+        // enough key points that plotters' own choice lands on every whole step
+        let n = (((xr.1 - xr.0) / step).ceil() as usize * 2 + 1).min(41);
+        mesh.x_labels(n).x_label_formatter(&whole);
+    }
+    mesh.draw().map_err(|x| e(&x))?;
+    for band in &panel.bands {
+        let c = band.colour.unwrap_or(SERIES[0]);
+        let shade = c.mix(0.25);
+        let mut ring: Vec<(f64, f64)> = band
+            .points
+            .iter()
+            .filter(|p| p.0.is_finite() && p.1.is_finite() && p.2.is_finite())
+            .map(|&(x, lo, _)| (x.clamp(xr.0, xr.1), lo.clamp(yr.0, yr.1)))
+            .collect();
+        ring.extend(
+            band.points
+                .iter()
+                .rev()
+                .filter(|p| p.0.is_finite() && p.1.is_finite() && p.2.is_finite())
+                .map(|&(x, _, hi)| (x.clamp(xr.0, xr.1), hi.clamp(yr.0, yr.1))),
+        );
+        if ring.len() < 3 {
+            continue;
+        }
+        chart
+            .draw_series(std::iter::once(Polygon::new(ring, shade.filled())))
+            .map_err(|x| e(&x))?
+            .label(band.name.clone())
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 20, y + 5)], shade.filled()));
+    }
+    for (i, s) in panel.series.iter().enumerate() {
+        let c = s.colour.unwrap_or(SERIES[i % SERIES.len()]);
+        let runs = clip(&s.points, xr, yr);
+        for (k, run) in runs.iter().enumerate() {
+            let drawn = chart
+                .draw_series(LineSeries::new(run.iter().copied(), c.stroke_width(2)))
+                .map_err(|x| e(&x))?;
+            if k == 0 {
+                drawn.label(s.name.clone()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                });
+            }
+        }
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::LowerRight)
+        .draw()
+        .map_err(|x| e(&x))?;
+    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn wrapped_lines_fit_and_keep_every_word() {
+        let text = "a validity subtitle that is much too long for one line of a figure 960 pixels wide, with more words";
+        let lines = wrap(text, 300.0, 18.0);
+        assert!(lines.len() > 1);
+        for l in &lines {
+            assert!(l.chars().count() as f64 * CHAR_WIDTH * 18.0 <= 300.0, "{l}");
+        }
+        assert_eq!(lines.join(" "), text);
+        assert_eq!(wrap("short", 300.0, 18.0), vec!["short".to_owned()]);
+    }
+
+    #[test]
+    fn whole_steps_are_whole_and_few() {
+        assert_eq!(whole_step(9.0), 1.0);
+        assert_eq!(whole_step(1.0), 1.0);
+        assert_eq!(whole_step(99.0), 10.0);
+        assert_eq!(whole_step(250.0), 50.0);
+    }
 
     #[test]
     fn clipping_keeps_the_part_inside_and_cuts_at_the_border() {
