@@ -235,11 +235,8 @@ pub fn main(args: &[&str]) -> Result<(), String> {
             scenes += 1;
             if let Some(dir) = &scene_dir {
                 let path = dir.join(format!("{domain:?}-{scenes}.toml").to_lowercase());
-                stiction_report::output::write_file(
-                    &path,
-                    scenegen::to_toml(&scene).as_bytes(),
-                )
-                .map_err(|e| e.to_string())?;
+                stiction_report::output::write_file(&path, scenegen::to_toml(&scene).as_bytes())
+                    .map_err(|e| e.to_string())?;
             }
             if only_scenes {
                 continue;

@@ -809,7 +809,6 @@ impl GasSpec {
     }
 }
 
-
 /// Any validated scene.
 // a spec is built once a run and moved rarely: the switch's size is no cost worth a box
 #[allow(clippy::large_enum_variant)]

@@ -122,7 +122,11 @@ fn a_switch_scene_takes_its_roughness_and_radius_from_a_map_beside_it() {
     let again = SwitchSpec::new(&echo, &registry()).unwrap();
     assert_eq!(again.roughness(), s.roughness());
     assert_eq!(again.contact().radius(), s.contact().radius());
-    assert!(again.common().notes().is_empty(), "{:?}", again.common().notes());
+    assert!(
+        again.common().notes().is_empty(),
+        "{:?}",
+        again.common().notes()
+    );
     // the spectral route
     let p = switch_scene(
         &d,
@@ -378,10 +382,16 @@ fn merged_scenes_take_the_later_value_and_name_the_file_of_each_key() {
     )
     .unwrap();
     assert_eq!(
-        spec.roughness().asperity_density(), 1e13,
+        spec.roughness().asperity_density(),
+        1e13,
         "switch.toml gives it"
     );
-    assert_eq!(spec.common().notes().len(), 3, "{:?}", spec.common().notes());
+    assert_eq!(
+        spec.common().notes().len(),
+        3,
+        "{:?}",
+        spec.common().notes()
+    );
     assert!(spec.common().notes()[0].message.contains("surface.toml"));
     assert!(spec.common().notes()[1].message.contains("switch.toml"));
     assert!(plain.gw.sigma_s > 0.0);

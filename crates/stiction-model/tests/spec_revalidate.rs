@@ -81,7 +81,10 @@ fn every_kind_changes_through_its_constructor() -> Result<(), ModelError> {
     let registry = LawRegistry::builtin();
     let a = AsperitySpec::new(&Scene::paper(Kind::Asperity), &registry)?;
     let a = a.with_accuracy(Accuracy::Fast)?.with_points(50)?;
-    assert_eq!((a.common().accuracy(), a.common().points()), (Accuracy::Fast, 50));
+    assert_eq!(
+        (a.common().accuracy(), a.common().points()),
+        (Accuracy::Fast, 50)
+    );
     assert_eq!(a.common().echo()["points"], 50);
     let s = SurfaceSpec::new(&Scene::paper(Kind::Surface), &registry)?;
     let s = s.with_accuracy(Accuracy::Balanced)?;
