@@ -72,7 +72,7 @@ fn scenes(domain: Domain, seed: u64, n: usize) -> Vec<SwitchSpec> {
 
 /// The scene as a file, to rerun a failing one alone.
 fn toml(s: &SwitchSpec) -> String {
-    scenegen::to_toml(&s.common().scene())
+    scenegen::to_toml(s.common().scene())
 }
 
 #[test]

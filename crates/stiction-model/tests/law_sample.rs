@@ -38,7 +38,7 @@ fn random_mems_scenes_tabulate_to_converged_tables_that_read_back_and_hold_out()
             s.contact().plasticity().name(),
             s.contact().yield_modulus().as_str(),
             s.contact().reload().as_str(),
-            scenegen::to_toml(&s.common().scene())
+            scenegen::to_toml(s.common().scene())
         );
         let r = match law::tabulate(LawScene::Switch(&s), &LawOptions::default(), &Silent) {
             Ok(r) => r,

@@ -124,7 +124,7 @@ fn the_hold_balances_and_the_resistance_is_the_spots_in_parallel() {
         r.hold_voltage, r.voltage,
         "default hold: the actuation voltage"
     );
-    let g = &spec.switch();
+    let g = spec.switch();
     let gap = g.t_d() / g.epsilon_r();
     let p_es = 0.5 * g.epsilon_0() * r.voltage * r.voltage / (gap * gap);
     let want = (p_es - r.restoring_pressure) / g.contact_area_fraction();
@@ -260,7 +260,7 @@ fn no_conduction_no_resistance_and_the_keys_say_what_is_missing() {
 #[test]
 fn a_hold_force_is_a_pressure_over_the_contact_area() {
     let (spec, r) = run(&switch_scene(&[("switch.hold_force", "2e-3")]));
-    let g = &spec.switch();
+    let g = spec.switch();
     let want = 2e-3 / (g.contact_area_fraction() * g.electrode_area().unwrap());
     assert!((r.hold_pressure / want - 1.0).abs() < 1e-12);
     let h = r.cycles[0].hold.as_ref().unwrap();

@@ -163,7 +163,7 @@ fn keys_the_scene_gives_win_with_a_note_naming_both_values() {
     assert_eq!(Some(w), want.cutoff.wavelength);
     assert!(w > 0.0 && want.cutoff.applied);
     assert_eq!(s.roughness().asperity_density(), want.gw.asperity_density);
-    let notes = &s.common().notes();
+    let notes = s.common().notes();
     assert_eq!(notes.len(), 2, "{notes:?}");
     for (n, key, given, map) in [
         (&notes[0], "surface.sigma_s", "5e-9", want.gw.sigma_s),

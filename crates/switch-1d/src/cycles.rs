@@ -1580,7 +1580,7 @@ const HISTORY_STEP: f64 = 1e-3;
 /// - the pull-out: its own estimate plus |dp/dd_e| times the estimate of d_e and, where
 ///   the impact did not deepen, |dp/dD| times that of D: each slope a difference of the
 ///   retraction pressure at the pull-out's separation (which moves the minimum only to
-///   second order) with the history loaded [`HISTORY_STEP`] sigma_s deeper, plus the
+///   second order) with the history loaded `HISTORY_STEP` sigma_s deeper, plus the
 ///   pressures' estimates over the step.
 ///
 /// A cycle that repeats the one before (the same history to start from) repeats its

@@ -31,7 +31,7 @@ pub struct DynamicCycle {
 }
 
 /// Runs `options.cycles` closures of `plate` on `surface` from `history`: each integrates
-/// the flight, the impact and the bounces ([`close`]); the history after the last impact
+/// the flight, the impact and the bounces ([`close`](crate::close)); the history after the last impact
 /// is unloaded for the pull-out (`switch_1d::unload`), judged against the spring's
 /// restoring pressure K_s (d0 - h), and released ([`release`]). The cycles come back as the
 /// quasi-static runner's (`switch_1d::CycleRun`: d_e is the deepest separation of the
