@@ -20,9 +20,10 @@ fn bench(c: &mut Criterion) {
     let paper = SwitchSpec::new(&Scene::paper(Kind::Switch), &registry).unwrap();
     for acc in [Accuracy::Accurate, Accuracy::Balanced, Accuracy::Fast] {
         for points in [0usize, 200] {
-            let mut spec = paper.clone();
-            spec.common.accuracy = acc;
-            spec.common.points = points;
+            let spec = paper
+                .with_accuracy(acc)
+                .and_then(|s| s.with_points(points))
+                .unwrap();
             g.bench_function(
                 format!("switch 10 cycles + elastic, {acc}, {points} curve points"),
                 |b| b.iter(|| SwitchModel::build(&spec).unwrap().run(&Silent).unwrap()),

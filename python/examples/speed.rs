@@ -64,7 +64,7 @@ fn main() {
     let path = Path::Retract { from: 5e-9 };
     let mut surface = Vec::new();
     for accuracy in [Accuracy::Fast, Accuracy::Accurate] {
-        let gw = rough_surface(&spec.contact, spec.roughness, accuracy, 0.0, false).expect("gw");
+        let gw = rough_surface(spec.contact(), spec.roughness(), accuracy, 0.0, false).expect("gw");
         let serial = best_of(3, || {
             let t = Instant::now();
             for &x in &sd {

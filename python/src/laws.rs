@@ -195,13 +195,13 @@ impl PyAdhesionLaw {
         let spec = crate::pool::detach(py, move || Spec::new(&scene, &registry())).or_raise()?;
         let c = spec.contact();
         Ok(Self {
-            law: c.adhesion.law.clone(),
-            name: c.adhesion.name.clone(),
+            law: c.adhesion().law().clone(),
+            name: c.adhesion().name().to_string(),
             description: format!(
                 "of the scene: k={:e} Pa, work_of_adhesion={:e} J/m^2, z0={:e} m",
-                c.pair.k(),
-                c.work_of_adhesion,
-                c.z0
+                c.pair().k(),
+                c.work_of_adhesion(),
+                c.z0()
             ),
         })
     }
@@ -582,8 +582,8 @@ impl PySurface {
         let (gw, accuracy, sigma_s) = crate::pool::detach(py, move || -> Result<_, ModelError> {
             let spec = Spec::new(&scene, &registry())?;
             let (common, c, roughness) = match &spec {
-                Spec::Switch(s) => (&s.common, &s.contact, s.roughness),
-                Spec::Surface(s) => (&s.common, &s.contact, s.roughness),
+                Spec::Switch(s) => (s.common(), s.contact(), s.roughness()),
+                Spec::Surface(s) => (s.common(), s.contact(), s.roughness()),
                 _ => {
                     return Err(ModelError::argument(
                         "scene",
@@ -592,9 +592,9 @@ impl PySurface {
                     ))
                 }
             };
-            let accuracy = acc.unwrap_or(common.accuracy);
+            let accuracy = acc.unwrap_or(common.accuracy());
             let gw = rough_surface(c, roughness, accuracy, 0.0, elastic)?;
-            Ok((gw, accuracy, roughness.sigma_s))
+            Ok((gw, accuracy, roughness.sigma_s()))
         })
         .or_raise()?;
         Ok(Self {

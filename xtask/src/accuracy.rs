@@ -14,7 +14,7 @@ use std::io::IsTerminal;
 use std::time::Instant;
 use stiction_model::laws::LawRegistry;
 use stiction_model::scenegen::{self, Domain, Rng};
-use stiction_model::spec::SwitchSpec;
+use stiction_model::spec::{count_value, ContactStates, SwitchSpec};
 use stiction_model::switch::{SwitchModel, SwitchResult};
 use stiction_model::{Accuracy, ModelError, Silent};
 
@@ -22,8 +22,10 @@ const BEGIN: &str = "<!-- xtask accuracy: begin -->";
 const END: &str = "<!-- xtask accuracy: end -->";
 
 fn run(s: &SwitchSpec, mode: Accuracy) -> (Result<SwitchResult, ModelError>, f64) {
-    let mut s = s.clone();
-    s.common.accuracy = mode;
+    let s = match s.with_accuracy(mode) {
+        Ok(s) => s,
+        Err(e) => return (Err(e), 0.0),
+    };
     let t = Instant::now();
     let r = SwitchModel::build(&s).and_then(|m| m.run(&Silent));
     (r, t.elapsed().as_secs_f64())
@@ -80,7 +82,7 @@ fn errors(a: &SwitchResult, b: &SwitchResult, sigma: f64) -> (f64, f64, f64) {
 fn report_scene(s: &SwitchSpec) {
     eprintln!(
         "\n# scene flagged by xtask accuracy\n{}",
-        scenegen::to_toml(&s.common.scene)
+        scenegen::to_toml(s.common().scene())
     );
 }
 
@@ -116,12 +118,12 @@ struct Stats {
 /// this (soft films take a few more than hard ones).
 const COMPARED_CYCLES: usize = 8;
 
-/// The same scene run until accommodated (at most 20 cycles).
-fn until_accommodated(s: &SwitchSpec) -> SwitchSpec {
-    let mut s = s.clone();
-    s.until_accommodated = true;
-    s.cycles = 20;
-    s
+/// The same scene run until accommodated (at most 20 cycles), validated again.
+fn until_accommodated(s: &SwitchSpec) -> Result<SwitchSpec, ModelError> {
+    s.with_values(&[
+        ("until_accommodated", toml::Value::Boolean(true)),
+        ("cycles", count_value(20)),
+    ])
 }
 
 pub fn main(args: &[&str]) -> Result<(), String> {
@@ -222,33 +224,43 @@ pub fn main(args: &[&str]) -> Result<(), String> {
         let (mut scenes, mut unanswered, mut reference_failed, mut rejected) = (0, 0, 0, 0);
         while scenes < count {
             let scene = scenegen::switch_scene(&mut rng, domain, "generated");
-            let Ok(mut s) = SwitchSpec::new(&scene, &registry) else {
+            let Ok(s) = SwitchSpec::new(&scene, &registry) else {
                 continue;
             };
             // the table compares d_e and the pull-outs: the closed switch's contact state
             // (a rest solve per cycle, the longest part of some reference runs) is not needed
-            s.contact_states = stiction_model::spec::ContactStates::None;
+            let s = s
+                .with_contact_states(ContactStates::None)
+                .map_err(|e| e.to_string())?;
             scenes += 1;
             if let Some(dir) = &scene_dir {
                 let path = dir.join(format!("{domain:?}-{scenes}.toml").to_lowercase());
-                stiction_report::output::write_file(
-                    &path,
-                    scenegen::to_toml(&s.common.scene).as_bytes(),
-                )
-                .map_err(|e| e.to_string())?;
+                stiction_report::output::write_file(&path, scenegen::to_toml(&scene).as_bytes())
+                    .map_err(|e| e.to_string())?;
             }
             if only_scenes {
                 continue;
             }
             // every cycle up to accommodation (at most COMPARED_CYCLES): the reference
             // finds where, the modes run that many cycles
-            s.cycles = COMPARED_CYCLES;
-            s.until_accommodated = true;
-            let (reference, t_ref) = run(&s, Accuracy::Reference);
-            if let Ok(r) = &reference {
-                s.cycles = r.cycles.len();
-            }
-            s.until_accommodated = false;
+            let compared = s
+                .with_values(&[
+                    ("cycles", count_value(COMPARED_CYCLES)),
+                    ("until_accommodated", toml::Value::Boolean(true)),
+                ])
+                .map_err(|e| e.to_string())?;
+            let (reference, t_ref) = run(&compared, Accuracy::Reference);
+            // the modes run as many cycles as the reference ran (all of them)
+            let cycles = match &reference {
+                Ok(r) => r.cycles.len(),
+                Err(_) => COMPARED_CYCLES,
+            };
+            let s = s
+                .with_values(&[
+                    ("cycles", count_value(cycles)),
+                    ("until_accommodated", toml::Value::Boolean(false)),
+                ])
+                .map_err(|e| e.to_string())?;
             let reference = match reference {
                 Ok(r) => {
                     timed(domain, scenes, Accuracy::Reference, t_ref, "ok");
@@ -280,14 +292,14 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                     timed(domain, scenes, Accuracy::Reference, t_ref, "failed");
                     reference_failed += 1;
                     notes.push(format!("{domain:?} reference: failed: {e}"));
-                    report_scene(&s);
+                    report_scene(&compared);
                     continue;
                 }
             };
-            let sigma = s.roughness.sigma_s;
+            let sigma = s.roughness().sigma_s();
             // the stopping rule: the ratio after accommodation against the reference's,
             // within the sum of the two reported error estimates
-            let stop = until_accommodated(&s);
+            let stop = until_accommodated(&s).map_err(|e| e.to_string())?;
             let reference_stop = if stopping_rule {
                 run(&stop, Accuracy::Reference).0.ok()
             } else {
@@ -334,14 +346,14 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                         if cover > 1.0 {
                             stats[k].uncovered += 1;
                             report_scene(&s);
-                            notes.push(format!("{domain:?} {mode}: an error {cover:.1}x the estimates (d_e {de:.1e} sigma_s, pull-out {po:.1e}; {}, {}, eq 1 {}, reload {})", s.contact.adhesion.name, s.contact.plasticity.name, s.contact.yield_modulus.as_str(), s.contact.reload.as_str()));
+                            notes.push(format!("{domain:?} {mode}: an error {cover:.1}x the estimates (d_e {de:.1e} sigma_s, pull-out {po:.1e}; {}, {}, eq 1 {}, reload {})", s.contact().adhesion().name(), s.contact().plasticity().name(), s.contact().yield_modulus().as_str(), s.contact().reload().as_str()));
                         }
                         stats[k].cover_worst = stats[k].cover_worst.max(cover);
                         let tg = mode.targets();
                         if de > tg.d_e_tolerance_sigma || po > tg.pull_out_tolerance {
                             stats[k].over += 1;
                             report_scene(&s);
-                            notes.push(format!("{domain:?} {mode}: d_e {de:.1e} sigma_s, pull-out {po:.1e} ({}, {}, eq 1 {}, reload {})", s.contact.adhesion.name, s.contact.plasticity.name, s.contact.yield_modulus.as_str(), s.contact.reload.as_str()));
+                            notes.push(format!("{domain:?} {mode}: d_e {de:.1e} sigma_s, pull-out {po:.1e} ({}, {}, eq 1 {}, reload {})", s.contact().adhesion().name(), s.contact().plasticity().name(), s.contact().yield_modulus().as_str(), s.contact().reload().as_str()));
                         }
                         stats[k].de.push(de);
                         stats[k].po.push(po);

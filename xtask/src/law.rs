@@ -148,15 +148,15 @@ pub fn main(args: &[&str]) -> Result<(), String> {
             continue;
         }
         if only.is_some() {
-            eprintln!("{}", scenegen::to_toml(&s.common.scene));
+            eprintln!("{}", scenegen::to_toml(s.common().scene()));
         }
-        let c = &s.contact;
+        let c = s.contact();
         let what = format!(
             "{} / {} / eq 1 {} / reload {}",
-            c.adhesion.name,
-            c.plasticity.name,
-            c.yield_modulus.as_str(),
-            c.reload.as_str()
+            c.adhesion().name(),
+            c.plasticity().name(),
+            c.yield_modulus().as_str(),
+            c.reload().as_str()
         );
         let t = Instant::now();
         let r = law::tabulate(LawScene::Switch(&s), &LawOptions::default(), &Silent);
@@ -174,7 +174,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                     not_converged += 1;
                     notes.push(format!(
                         "scene {scenes} ({what}): not converged, measured {m:.2e}\n{}",
-                        scenegen::to_toml(&s.common.scene)
+                        scenegen::to_toml(s.common().scene())
                     ));
                 }
                 times.push(secs);
@@ -202,7 +202,7 @@ pub fn main(args: &[&str]) -> Result<(), String> {
                 failed += 1;
                 notes.push(format!(
                     "scene {scenes} ({what}): failed: {e}\n{}",
-                    scenegen::to_toml(&s.common.scene)
+                    scenegen::to_toml(s.common().scene())
                 ));
                 rows += &format!("| {scenes} | {what} | | | | | | failed | {secs:.1} | |\n");
             }

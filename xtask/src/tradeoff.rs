@@ -13,8 +13,7 @@ use stiction_model::{Accuracy, Silent};
 use stiction_report::plot::{self, Panel, Series};
 
 fn solve(s: &SwitchSpec, mode: Accuracy) -> Result<SwitchResult, String> {
-    let mut s = s.clone();
-    s.common.accuracy = mode;
+    let s = s.with_accuracy(mode).map_err(|e| e.to_string())?;
     SwitchModel::build(&s)
         .and_then(|m| m.run(&Silent))
         .map_err(|e| e.to_string())
@@ -25,7 +24,7 @@ pub fn main() -> Result<(), String> {
     scene.set_number("points", 0.0).map_err(|e| e.to_string())?;
     let s = SwitchSpec::new(&scene, &LawRegistry::builtin()).map_err(|e| e.to_string())?;
     let reference = solve(&s, Accuracy::Reference)?;
-    let sigma = s.roughness.sigma_s;
+    let sigma = s.roughness().sigma_s();
     println!("| mode | time, 10 cycles + elastic (s) | max d_e error (sigma_s) | max relative pull-out error |");
     println!("|---|---|---|---|");
     let mut pts = Vec::new();

@@ -520,10 +520,12 @@ fn default_histories(
     let sigma = gw.sigma_s();
     let (lo, deepest, cycles_d_e) = match scene {
         LawScene::Switch(s) => {
-            let mut quick = s.clone();
-            quick.common.points = 0;
-            quick.common.accuracy = accuracy;
-            quick.elastic_comparison = false;
+            // the same switch, pull-outs only, validated again with those settings
+            let quick = s.with_values(&[
+                ("points", crate::spec::count_value(0)),
+                ("accuracy", crate::spec::accuracy_value(accuracy)),
+                ("elastic_comparison", toml::Value::Boolean(false)),
+            ])?;
             let sw = SwitchModel::build(&quick)?.run(&crate::CancelOnly(progress))?;
             let cycles_d_e: Vec<f64> = sw.cycles.iter().map(|c| c.d_e).collect();
             let Some(deepest) = cycles_d_e.iter().copied().reduce(f64::min) else {

@@ -94,12 +94,24 @@ impl Choice {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ModelFormSpec {
     /// `model_form = "check"`.
-    pub check: bool,
+    pub(crate) check: bool,
     /// The pinned choices and their values (validated words).
-    pub pins: Vec<(Choice, Vec<String>)>,
+    pub(crate) pins: Vec<(Choice, Vec<String>)>,
 }
 
 impl ModelFormSpec {
+    /// `model_form = "check"`.
+    #[must_use]
+    pub fn check(&self) -> bool {
+        self.check
+    }
+
+    /// The pinned choices and their values (validated words).
+    #[must_use]
+    pub fn pins(&self) -> &[(Choice, Vec<String>)] {
+        &self.pins
+    }
+
     /// The values a choice is pinned to, if it is.
     pub fn pinned(&self, choice: Choice) -> Option<&[String]> {
         self.pins

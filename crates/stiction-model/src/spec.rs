@@ -6,9 +6,42 @@
 //! ```
 //! use stiction_model::{keys::Kind, laws::LawRegistry, scene::Scene, spec::SwitchSpec};
 //! let spec = SwitchSpec::new(&Scene::paper(Kind::Switch), &LawRegistry::builtin())?;
-//! assert_eq!(spec.cycles, 10);
-//! assert_eq!(spec.contact.plasticity.name, "etsion_kadin");
+//! assert_eq!(spec.cycles(), 10);
+//! assert_eq!(spec.contact().plasticity().name(), "etsion_kadin");
 //! # Ok::<(), stiction_model::ModelError>(())
+//! ```
+//!
+//! A spec is read-only once validated: its fields are private to this crate and read
+//! through getters of the same names. A setting is changed by validating the scene again,
+//! directly (edit the [`Scene`], call [`SwitchSpec::new`]) or through the `with_*` methods
+//! ([`SwitchSpec::with_accuracy`], [`SwitchSpec::with_values`], ...), so that every rule
+//! and the curve budget ([`MAX_CURVE_POINTS`]) hold and the echo states what runs:
+//!
+//! ```
+//! use stiction_model::{keys::Kind, laws::LawRegistry, scene::Scene, spec::SwitchSpec};
+//! use stiction_model::Accuracy;
+//! let spec = SwitchSpec::new(&Scene::paper(Kind::Switch), &LawRegistry::builtin())?;
+//! let fast = spec.with_accuracy(Accuracy::Fast)?;
+//! assert_eq!(fast.common().accuracy(), Accuracy::Fast);
+//! assert_eq!(fast.common().echo()["accuracy"], "fast");
+//! // the curve budget holds for a changed setting as for a scene's own
+//! assert!(spec.with_points(2_000_000).is_err());
+//! # Ok::<(), stiction_model::ModelError>(())
+//! ```
+//!
+//! A field cannot be assigned from outside the crate:
+//!
+//! ```compile_fail
+//! use stiction_model::{keys::Kind, laws::LawRegistry, scene::Scene, spec::SwitchSpec};
+//! use stiction_model::Accuracy;
+//! let mut spec = SwitchSpec::new(&Scene::paper(Kind::Switch), &LawRegistry::builtin()).unwrap();
+//! spec.common.accuracy = Accuracy::Fast; // error[E0616]: field `common` is private
+//! ```
+//!
+//! ```compile_fail
+//! use stiction_model::{keys::Kind, laws::LawRegistry, scene::Scene, spec::SwitchSpec};
+//! let mut spec = SwitchSpec::new(&Scene::paper(Kind::Switch), &LawRegistry::builtin()).unwrap();
+//! spec.cycles = 20; // error[E0616]: field `cycles` is private
 //! ```
 
 use crate::accuracy::Accuracy;
@@ -62,11 +95,11 @@ impl Counter {
 #[derive(Clone)]
 pub struct Chosen<L> {
     /// The registered name.
-    pub name: String,
+    pub(crate) name: String,
     /// Its validated parameters.
-    pub params: LawParams,
+    pub(crate) params: LawParams,
     /// The law.
-    pub law: L,
+    pub(crate) law: L,
 }
 
 impl<L> std::fmt::Debug for Chosen<L> {
@@ -88,31 +121,31 @@ pub type RoughSurface = gw_surface::GreenwoodWilliamson<Asperity>;
 #[derive(Debug, Clone)]
 pub struct ContactSpec {
     /// E of the asperity-carrying film (Pa).
-    pub youngs_modulus: f64,
+    pub(crate) youngs_modulus: f64,
     /// Its nu.
-    pub poisson_ratio: f64,
+    pub(crate) poisson_ratio: f64,
     /// Its S_Y (Pa; infinite: never yields).
-    pub yield_stress: f64,
+    pub(crate) yield_stress: f64,
     /// Asperity tip radius R (m).
-    pub radius: f64,
+    pub(crate) radius: f64,
     /// Work of adhesion w (J/m^2).
-    pub work_of_adhesion: f64,
+    pub(crate) work_of_adhesion: f64,
     /// Dugdale range z0 (m).
-    pub z0: f64,
+    pub(crate) z0: f64,
     /// The counter-surface.
-    pub counter: Counter,
+    pub(crate) counter: Counter,
     /// The reading of eq 1.
-    pub yield_modulus: YieldModulus,
+    pub(crate) yield_modulus: YieldModulus,
     /// The reload rule.
-    pub reload: Reload,
+    pub(crate) reload: Reload,
     /// The films' conduction (resistivity, mean free path), if given.
-    pub conduction: Option<crate::ohmic::Conduction>,
+    pub(crate) conduction: Option<crate::ohmic::Conduction>,
     /// The adhesion law.
-    pub adhesion: Chosen<DynAdhesion>,
+    pub(crate) adhesion: Chosen<DynAdhesion>,
     /// The plasticity law.
-    pub plasticity: Chosen<DynPlasticity>,
+    pub(crate) plasticity: Chosen<DynPlasticity>,
     /// The pair (E*, K, the radius), built once.
-    pub pair: Pair,
+    pub(crate) pair: Pair,
 }
 
 impl ContactSpec {
@@ -162,9 +195,9 @@ impl ContactSpec {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RoughnessSpec {
     /// sigma_s (m).
-    pub sigma_s: f64,
+    pub(crate) sigma_s: f64,
     /// N (1/m^2).
-    pub asperity_density: f64,
+    pub(crate) asperity_density: f64,
 }
 
 /// How the switch is driven: which of E_I, K_s, U the scene gives.
@@ -186,32 +219,32 @@ pub enum Drive {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SwitchGeometrySpec {
     /// Initial gap d0 (m).
-    pub d0: f64,
+    pub(crate) d0: f64,
     /// The air gap at which the contact (dimples or a bump) touches (m; 0: the electrode
     /// lands on the dielectric).
-    pub dimple_height: f64,
+    pub(crate) dimple_height: f64,
     /// Dielectric thickness t_d (m).
-    pub t_d: f64,
+    pub(crate) t_d: f64,
     /// Relative permittivity.
-    pub epsilon_r: f64,
+    pub(crate) epsilon_r: f64,
     /// Vacuum permittivity (F/m).
-    pub epsilon_0: f64,
+    pub(crate) epsilon_0: f64,
     /// Film thickness t_s of eq 17 (m).
-    pub film_thickness: f64,
+    pub(crate) film_thickness: f64,
     /// Film modulus of eq 17 (Pa).
-    pub film_youngs_modulus: f64,
+    pub(crate) film_youngs_modulus: f64,
     /// The drive.
-    pub drive: Drive,
+    pub(crate) drive: Drive,
     /// Fraction phi of the electrode in contact.
-    pub contact_area_fraction: f64,
+    pub(crate) contact_area_fraction: f64,
     /// The electrode's area (m^2), if given (needed for forces and resistances).
-    pub electrode_area: Option<f64>,
+    pub(crate) electrode_area: Option<f64>,
     /// The spring constant (N/m), if the drive was given that way (K_s = k / area).
-    pub spring_constant: Option<f64>,
+    pub(crate) spring_constant: Option<f64>,
     /// The voltage holding the switch shut (V), if given (default: the actuation voltage).
-    pub hold_voltage: Option<f64>,
+    pub(crate) hold_voltage: Option<f64>,
     /// The force holding the switch shut on its contacts (N), if given instead.
-    pub hold_force: Option<f64>,
+    pub(crate) hold_force: Option<f64>,
 }
 
 /// When a switch run computes the contact state (rest, area, spots, resistance).
@@ -241,19 +274,22 @@ impl ContactStates {
 #[derive(Debug, Clone)]
 pub struct Common {
     /// The scene it was made from (for echoes and design variations).
-    pub scene: Scene,
+    pub(crate) scene: Scene,
     /// The title of plots and tables.
-    pub title: String,
+    pub(crate) title: String,
     /// Accuracy mode.
-    pub accuracy: Accuracy,
+    pub(crate) accuracy: Accuracy,
     /// Points per written curve.
-    pub points: usize,
+    pub(crate) points: usize,
     /// Every key with the value it resolved to (defaults filled), for echoes.
-    pub resolved: toml::Table,
+    pub(crate) resolved: toml::Table,
     /// Notes of the validation for the front ends to show with a run's warnings (a key
     /// the scene gives overriding the value its `surface.topography` gives:
     /// [`crate::topography::TOPOGRAPHY_VALUE_OVERRIDDEN`]).
-    pub notes: Vec<crate::guards::Warning>,
+    pub(crate) notes: Vec<crate::guards::Warning>,
+    /// The law registry the scene was validated against, to validate it again when a
+    /// setting changes (the `with_*` methods of the specs).
+    pub(crate) registry: Arc<LawRegistry>,
 }
 
 impl Common {
@@ -267,71 +303,72 @@ impl Common {
 #[derive(Debug, Clone)]
 pub struct AsperitySpec {
     /// Source, title, accuracy, points.
-    pub common: Common,
+    pub(crate) common: Common,
     /// The contact.
-    pub contact: ContactSpec,
+    pub(crate) contact: ContactSpec,
     /// The maximum interferences (m).
-    pub delta_max: Vec<f64>,
+    pub(crate) delta_max: Vec<f64>,
 }
 
 /// A validated surface scene.
 #[derive(Debug, Clone)]
 pub struct SurfaceSpec {
     /// Source, title, accuracy, points.
-    pub common: Common,
+    pub(crate) common: Common,
     /// The contact.
-    pub contact: ContactSpec,
+    pub(crate) contact: ContactSpec,
     /// The roughness.
-    pub roughness: RoughnessSpec,
+    pub(crate) roughness: RoughnessSpec,
     /// Smallest separation of the loading curve (m), if given.
-    pub d_start: Option<f64>,
+    pub(crate) d_start: Option<f64>,
     /// Load to this separation and unload (m), if given.
-    pub unload_from: Option<f64>,
+    pub(crate) unload_from: Option<f64>,
 }
 
 /// A validated switch scene.
 #[derive(Debug, Clone)]
 pub struct SwitchSpec {
     /// Source, title, accuracy, points.
-    pub common: Common,
+    pub(crate) common: Common,
     /// The contact.
-    pub contact: ContactSpec,
+    pub(crate) contact: ContactSpec,
     /// The roughness.
-    pub roughness: RoughnessSpec,
+    pub(crate) roughness: RoughnessSpec,
     /// The switch.
-    pub switch: SwitchGeometrySpec,
+    pub(crate) switch: SwitchGeometrySpec,
     /// Cycles (the cap with `until_accommodated`).
-    pub cycles: usize,
+    pub(crate) cycles: usize,
     /// Stop once accommodated.
-    pub until_accommodated: bool,
+    pub(crate) until_accommodated: bool,
     /// Accommodation tolerance.
-    pub accommodation_tolerance: f64,
+    pub(crate) accommodation_tolerance: f64,
     /// Run the elastic comparison.
-    pub elastic_comparison: bool,
+    pub(crate) elastic_comparison: bool,
     /// When the contact state is computed.
-    pub contact_states: ContactStates,
+    pub(crate) contact_states: ContactStates,
     /// The model-form check (`model_form` and its pins).
-    pub model_form: crate::model_form::ModelFormSpec,
+    pub(crate) model_form: crate::model_form::ModelFormSpec,
     /// The switch in time (`[dynamics]`), if the scene asks for it.
-    pub dynamics: Option<DynamicsSpec>,
+    pub(crate) dynamics: Option<DynamicsSpec>,
 }
 
 /// The `[dynamics]` section: the electrode's mass and the gas under it (theory 13).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DynamicsSpec {
     /// m'' (kg/m^2), if given.
-    pub areal_mass: Option<f64>,
+    pub(crate) areal_mass: Option<f64>,
     /// f0 (Hz), if given instead.
-    pub resonance_frequency: Option<f64>,
+    pub(crate) resonance_frequency: Option<f64>,
     /// The gas film, when gas_pressure > 0.
-    pub gas: Option<GasSpec>,
+    pub(crate) gas: Option<GasSpec>,
     /// Bounces allowed per closure.
-    pub max_bounces: usize,
+    pub(crate) max_bounces: usize,
 }
 
 impl DynamicsSpec {
     /// m'' (kg/m^2) for a spring K_s (Pa/m): given, or K_s/(2 pi f0)^2.
-    pub fn areal_mass(&self, k_s: f64) -> f64 {
+    #[must_use]
+    pub fn areal_mass_for(&self, k_s: f64) -> f64 {
         match (self.areal_mass, self.resonance_frequency) {
             (Some(m), _) => m,
             (None, Some(f)) => k_s / (2.0 * std::f64::consts::PI * f).powi(2),
@@ -344,15 +381,432 @@ impl DynamicsSpec {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GasSpec {
     /// Pressure (Pa).
-    pub pressure: f64,
+    pub(crate) pressure: f64,
     /// Viscosity (Pa s).
-    pub viscosity: f64,
+    pub(crate) viscosity: f64,
     /// Mean free path at 101325 Pa (m).
-    pub mean_free_path: f64,
+    pub(crate) mean_free_path: f64,
     /// Plate width (m).
-    pub width: f64,
+    pub(crate) width: f64,
     /// Plate length (m).
-    pub length: f64,
+    pub(crate) length: f64,
+}
+
+// The fields of the validated specs are `pub(crate)`: outside this crate a spec is read
+// through these getters and changed only by validating a scene again (`SwitchSpec::new`,
+// or the `with_*` methods, which do), so the curve budget and the echo always hold.
+
+impl<L> Chosen<L> {
+    /// The registered name.
+    #[must_use]
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Its validated parameters.
+    #[must_use]
+    pub fn params(&self) -> &LawParams {
+        &self.params
+    }
+
+    /// The law.
+    #[must_use]
+    pub fn law(&self) -> &L {
+        &self.law
+    }
+}
+
+impl ContactSpec {
+    /// E of the asperity-carrying film (Pa).
+    #[must_use]
+    pub fn youngs_modulus(&self) -> f64 {
+        self.youngs_modulus
+    }
+
+    /// Its nu.
+    #[must_use]
+    pub fn poisson_ratio(&self) -> f64 {
+        self.poisson_ratio
+    }
+
+    /// Its S_Y (Pa; infinite: never yields).
+    #[must_use]
+    pub fn yield_stress(&self) -> f64 {
+        self.yield_stress
+    }
+
+    /// Asperity tip radius R (m).
+    #[must_use]
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// Work of adhesion w (J/m^2).
+    #[must_use]
+    pub fn work_of_adhesion(&self) -> f64 {
+        self.work_of_adhesion
+    }
+
+    /// Dugdale range z0 (m).
+    #[must_use]
+    pub fn z0(&self) -> f64 {
+        self.z0
+    }
+
+    /// The counter-surface.
+    #[must_use]
+    pub fn counter(&self) -> Counter {
+        self.counter
+    }
+
+    /// The reading of eq 1.
+    #[must_use]
+    pub fn yield_modulus(&self) -> YieldModulus {
+        self.yield_modulus
+    }
+
+    /// The reload rule.
+    #[must_use]
+    pub fn reload(&self) -> Reload {
+        self.reload
+    }
+
+    /// The films' conduction (resistivity, mean free path), if given.
+    #[must_use]
+    pub fn conduction(&self) -> Option<crate::ohmic::Conduction> {
+        self.conduction
+    }
+
+    /// The adhesion law.
+    #[must_use]
+    pub fn adhesion(&self) -> &Chosen<DynAdhesion> {
+        &self.adhesion
+    }
+
+    /// The plasticity law.
+    #[must_use]
+    pub fn plasticity(&self) -> &Chosen<DynPlasticity> {
+        &self.plasticity
+    }
+
+    /// The pair (E*, K, the radius), built once.
+    #[must_use]
+    pub fn pair(&self) -> Pair {
+        self.pair
+    }
+}
+
+impl RoughnessSpec {
+    /// sigma_s (m).
+    #[must_use]
+    pub fn sigma_s(&self) -> f64 {
+        self.sigma_s
+    }
+
+    /// N (1/m^2).
+    #[must_use]
+    pub fn asperity_density(&self) -> f64 {
+        self.asperity_density
+    }
+}
+
+impl SwitchGeometrySpec {
+    /// Initial gap d0 (m).
+    #[must_use]
+    pub fn d0(&self) -> f64 {
+        self.d0
+    }
+
+    /// The air gap at which the contact (dimples or a bump) touches (m; 0: the electrode
+    /// lands on the dielectric).
+    #[must_use]
+    pub fn dimple_height(&self) -> f64 {
+        self.dimple_height
+    }
+
+    /// Dielectric thickness t_d (m).
+    #[must_use]
+    pub fn t_d(&self) -> f64 {
+        self.t_d
+    }
+
+    /// Relative permittivity.
+    #[must_use]
+    pub fn epsilon_r(&self) -> f64 {
+        self.epsilon_r
+    }
+
+    /// Vacuum permittivity (F/m).
+    #[must_use]
+    pub fn epsilon_0(&self) -> f64 {
+        self.epsilon_0
+    }
+
+    /// Film thickness t_s of eq 17 (m).
+    #[must_use]
+    pub fn film_thickness(&self) -> f64 {
+        self.film_thickness
+    }
+
+    /// Film modulus of eq 17 (Pa).
+    #[must_use]
+    pub fn film_youngs_modulus(&self) -> f64 {
+        self.film_youngs_modulus
+    }
+
+    /// The drive.
+    #[must_use]
+    pub fn drive(&self) -> Drive {
+        self.drive
+    }
+
+    /// Fraction phi of the electrode in contact.
+    #[must_use]
+    pub fn contact_area_fraction(&self) -> f64 {
+        self.contact_area_fraction
+    }
+
+    /// The electrode's area (m^2), if given (needed for forces and resistances).
+    #[must_use]
+    pub fn electrode_area(&self) -> Option<f64> {
+        self.electrode_area
+    }
+
+    /// The spring constant (N/m), if the drive was given that way (K_s = k / area).
+    #[must_use]
+    pub fn spring_constant(&self) -> Option<f64> {
+        self.spring_constant
+    }
+
+    /// The voltage holding the switch shut (V), if given (default: the actuation voltage).
+    #[must_use]
+    pub fn hold_voltage(&self) -> Option<f64> {
+        self.hold_voltage
+    }
+
+    /// The force holding the switch shut on its contacts (N), if given instead.
+    #[must_use]
+    pub fn hold_force(&self) -> Option<f64> {
+        self.hold_force
+    }
+}
+
+impl Common {
+    /// The scene it was made from (for echoes and design variations).
+    #[must_use]
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The title of plots and tables.
+    #[must_use]
+    pub fn title(&self) -> &str {
+        &self.title
+    }
+
+    /// Accuracy mode.
+    #[must_use]
+    pub fn accuracy(&self) -> Accuracy {
+        self.accuracy
+    }
+
+    /// Points per written curve.
+    #[must_use]
+    pub fn points(&self) -> usize {
+        self.points
+    }
+
+    /// Every key with the value it resolved to (defaults filled), for echoes.
+    #[must_use]
+    pub fn resolved(&self) -> &toml::Table {
+        &self.resolved
+    }
+
+    /// Notes of the validation for the front ends to show with a run's warnings (a key
+    /// the scene gives overriding the value its `surface.topography` gives:
+    /// [`crate::topography::TOPOGRAPHY_VALUE_OVERRIDDEN`]).
+    #[must_use]
+    pub fn notes(&self) -> &[crate::guards::Warning] {
+        &self.notes
+    }
+}
+
+impl AsperitySpec {
+    /// Source, title, accuracy, points.
+    #[must_use]
+    pub fn common(&self) -> &Common {
+        &self.common
+    }
+
+    /// The contact.
+    #[must_use]
+    pub fn contact(&self) -> &ContactSpec {
+        &self.contact
+    }
+
+    /// The maximum interferences (m).
+    #[must_use]
+    pub fn delta_max(&self) -> &[f64] {
+        &self.delta_max
+    }
+}
+
+impl SurfaceSpec {
+    /// Source, title, accuracy, points.
+    #[must_use]
+    pub fn common(&self) -> &Common {
+        &self.common
+    }
+
+    /// The contact.
+    #[must_use]
+    pub fn contact(&self) -> &ContactSpec {
+        &self.contact
+    }
+
+    /// The roughness.
+    #[must_use]
+    pub fn roughness(&self) -> RoughnessSpec {
+        self.roughness
+    }
+
+    /// Smallest separation of the loading curve (m), if given.
+    #[must_use]
+    pub fn d_start(&self) -> Option<f64> {
+        self.d_start
+    }
+
+    /// Load to this separation and unload (m), if given.
+    #[must_use]
+    pub fn unload_from(&self) -> Option<f64> {
+        self.unload_from
+    }
+}
+
+impl SwitchSpec {
+    /// Source, title, accuracy, points.
+    #[must_use]
+    pub fn common(&self) -> &Common {
+        &self.common
+    }
+
+    /// The contact.
+    #[must_use]
+    pub fn contact(&self) -> &ContactSpec {
+        &self.contact
+    }
+
+    /// The roughness.
+    #[must_use]
+    pub fn roughness(&self) -> RoughnessSpec {
+        self.roughness
+    }
+
+    /// The switch.
+    #[must_use]
+    pub fn switch(&self) -> &SwitchGeometrySpec {
+        &self.switch
+    }
+
+    /// Cycles (the cap with `until_accommodated`).
+    #[must_use]
+    pub fn cycles(&self) -> usize {
+        self.cycles
+    }
+
+    /// Stop once accommodated.
+    #[must_use]
+    pub fn until_accommodated(&self) -> bool {
+        self.until_accommodated
+    }
+
+    /// Accommodation tolerance.
+    #[must_use]
+    pub fn accommodation_tolerance(&self) -> f64 {
+        self.accommodation_tolerance
+    }
+
+    /// Run the elastic comparison.
+    #[must_use]
+    pub fn elastic_comparison(&self) -> bool {
+        self.elastic_comparison
+    }
+
+    /// When the contact state is computed.
+    #[must_use]
+    pub fn contact_states(&self) -> ContactStates {
+        self.contact_states
+    }
+
+    /// The model-form check (`model_form` and its pins).
+    #[must_use]
+    pub fn model_form(&self) -> &crate::model_form::ModelFormSpec {
+        &self.model_form
+    }
+
+    /// The switch in time (`[dynamics]`), if the scene asks for it.
+    #[must_use]
+    pub fn dynamics(&self) -> Option<DynamicsSpec> {
+        self.dynamics
+    }
+}
+
+impl DynamicsSpec {
+    /// m'' (kg/m^2), if given.
+    #[must_use]
+    pub fn areal_mass(&self) -> Option<f64> {
+        self.areal_mass
+    }
+
+    /// f0 (Hz), if given instead.
+    #[must_use]
+    pub fn resonance_frequency(&self) -> Option<f64> {
+        self.resonance_frequency
+    }
+
+    /// The gas film, when gas_pressure > 0.
+    #[must_use]
+    pub fn gas(&self) -> Option<GasSpec> {
+        self.gas
+    }
+
+    /// Bounces allowed per closure.
+    #[must_use]
+    pub fn max_bounces(&self) -> usize {
+        self.max_bounces
+    }
+}
+
+impl GasSpec {
+    /// Pressure (Pa).
+    #[must_use]
+    pub fn pressure(&self) -> f64 {
+        self.pressure
+    }
+
+    /// Viscosity (Pa s).
+    #[must_use]
+    pub fn viscosity(&self) -> f64 {
+        self.viscosity
+    }
+
+    /// Mean free path at 101325 Pa (m).
+    #[must_use]
+    pub fn mean_free_path(&self) -> f64 {
+        self.mean_free_path
+    }
+
+    /// Plate width (m).
+    #[must_use]
+    pub fn width(&self) -> f64 {
+        self.width
+    }
+
+    /// Plate length (m).
+    #[must_use]
+    pub fn length(&self) -> f64 {
+        self.length
+    }
 }
 
 /// Any validated scene.
@@ -395,6 +849,98 @@ impl Spec {
             Spec::Surface(s) => &s.contact,
             Spec::Switch(s) => &s.contact,
         }
+    }
+}
+
+/// A spec changed the one way a spec changes: its scene edited and validated again.
+macro_rules! revalidated {
+    ($spec:ty) => {
+        impl $spec {
+            /// This spec's scene with each `(key, value)` set (as [`Scene::set`] sets it),
+            /// validated again against the law registry it was validated against: every
+            /// rule and the curve budget checked anew, and the echo ([`Common::echo`])
+            /// stating the values the new spec runs with. The one way to change a setting
+            /// of a validated spec; several keys at once are validated once.
+            pub fn with_values(&self, values: &[(&str, toml::Value)]) -> Result<Self, ModelError> {
+                let mut scene = self.common.scene.clone();
+                for (key, value) in values {
+                    scene.set(key, value.clone())?;
+                }
+                Self::new(&scene, &self.common.registry)
+            }
+
+            /// This spec with `key` set to `value`, validated again ([`Self::with_values`]).
+            pub fn with_value(&self, key: &str, value: toml::Value) -> Result<Self, ModelError> {
+                self.with_values(&[(key, value)])
+            }
+
+            /// This spec run in accuracy mode `accuracy`, validated again
+            /// ([`Self::with_values`]): its echo states the mode.
+            pub fn with_accuracy(&self, accuracy: Accuracy) -> Result<Self, ModelError> {
+                self.with_value("accuracy", accuracy_value(accuracy))
+            }
+
+            /// This spec writing `points` points per curve, validated again against the
+            /// curve budget ([`MAX_CURVE_POINTS`]).
+            pub fn with_points(&self, points: usize) -> Result<Self, ModelError> {
+                self.with_value("points", count_value(points))
+            }
+        }
+    };
+}
+
+revalidated!(AsperitySpec);
+revalidated!(SurfaceSpec);
+revalidated!(SwitchSpec);
+
+/// The scene value of an accuracy mode (`accuracy = "fast"`).
+pub fn accuracy_value(accuracy: Accuracy) -> toml::Value {
+    toml::Value::String(accuracy.as_str().into())
+}
+
+/// The scene value of a count (`cycles = 20`; beyond `i64::MAX`: the largest, which
+/// validation refuses).
+pub fn count_value(n: usize) -> toml::Value {
+    toml::Value::Integer(i64::try_from(n).unwrap_or(i64::MAX))
+}
+
+impl SwitchSpec {
+    /// This spec run for `cycles` cycles, validated again ([`Self::with_values`]).
+    pub fn with_cycles(&self, cycles: usize) -> Result<Self, ModelError> {
+        self.with_value("cycles", count_value(cycles))
+    }
+
+    /// This spec computing the contact state `states`, validated again
+    /// ([`Self::with_values`]).
+    pub fn with_contact_states(&self, states: ContactStates) -> Result<Self, ModelError> {
+        self.with_value("contact_state", toml::Value::String(states.as_str().into()))
+    }
+}
+
+impl Spec {
+    /// This spec with each `(key, value)` set, validated again (as the kind's
+    /// `with_values`, e.g. [`SwitchSpec::with_values`]).
+    pub fn with_values(&self, values: &[(&str, toml::Value)]) -> Result<Self, ModelError> {
+        Ok(match self {
+            Spec::Asperity(s) => Spec::Asperity(s.with_values(values)?),
+            Spec::Surface(s) => Spec::Surface(s.with_values(values)?),
+            Spec::Switch(s) => Spec::Switch(s.with_values(values)?),
+        })
+    }
+
+    /// This spec run in accuracy mode `accuracy`, validated again: its echo states the
+    /// mode.
+    pub fn with_accuracy(&self, accuracy: Accuracy) -> Result<Self, ModelError> {
+        self.with_values(&[("accuracy", accuracy_value(accuracy))])
+    }
+}
+
+impl Common {
+    /// The law registry the scene was validated against (a copy, shared by the specs
+    /// made from it), which the `with_*` methods validate a changed scene against.
+    #[must_use]
+    pub fn registry(&self) -> &LawRegistry {
+        &self.registry
     }
 }
 
@@ -449,7 +995,7 @@ impl AsperitySpec {
         }
         r.finish()?;
         Ok(Self {
-            common: common.with_resolved(r.resolved),
+            common: common.with_resolved(r.resolved, registry),
             contact,
             delta_max,
         })
@@ -486,7 +1032,7 @@ impl SurfaceSpec {
         let common = r.common(2)?;
         r.finish()?;
         Ok(Self {
-            common: common.with_resolved(r.resolved),
+            common: common.with_resolved(r.resolved, registry),
             contact,
             roughness,
             d_start: ends[0],
@@ -535,7 +1081,7 @@ impl SwitchSpec {
         }
         r.finish()?;
         Ok(Self {
-            common: common.with_resolved(r.resolved),
+            common: common.with_resolved(r.resolved, registry),
             contact,
             roughness,
             switch,
@@ -551,8 +1097,9 @@ impl SwitchSpec {
 }
 
 impl Common {
-    fn with_resolved(mut self, resolved: toml::Table) -> Self {
+    fn with_resolved(mut self, resolved: toml::Table, registry: &LawRegistry) -> Self {
         self.resolved = resolved;
+        self.registry = Arc::new(registry.clone());
         self
     }
 }
@@ -979,6 +1526,7 @@ impl<'a> Reader<'a> {
             points,
             resolved: toml::Table::new(),
             notes: self.notes.clone(),
+            registry: Arc::default(),
         })
     }
 

@@ -513,7 +513,7 @@ impl<'a> SwitchModel<'a> {
             switch: self.sw,
             k_s: self.es.k_s,
             voltage: self.es.voltage,
-            areal_mass: d.areal_mass(self.es.k_s),
+            areal_mass: d.areal_mass_for(self.es.k_s),
             contact_area_fraction: self.spec.switch.contact_area_fraction,
             squeeze,
         };

@@ -21,9 +21,10 @@ use stiction_model::switch::{SwitchModel, SwitchResult};
 use stiction_model::{Accuracy, ModelError, Silent};
 
 fn run(s: &SwitchSpec, accuracy: Accuracy, points: usize) -> Result<SwitchResult, ModelError> {
-    let mut s = s.clone();
-    s.common.accuracy = accuracy;
-    s.common.points = points;
+    let s = s.with_values(&[
+        ("accuracy", stiction_model::spec::accuracy_value(accuracy)),
+        ("points", stiction_model::spec::count_value(points)),
+    ])?;
     SwitchModel::build(&s)?.run(&Silent)
 }
 
@@ -71,7 +72,7 @@ fn scenes(domain: Domain, seed: u64, n: usize) -> Vec<SwitchSpec> {
 
 /// The scene as a file, to rerun a failing one alone.
 fn toml(s: &SwitchSpec) -> String {
-    scenegen::to_toml(&s.common.scene)
+    scenegen::to_toml(s.common().scene())
 }
 
 #[test]
@@ -79,7 +80,7 @@ fn every_mode_meets_its_targets_on_random_mems_scenes() {
     let mut failures = Vec::new();
     let mut worst = [(0.0f64, 0.0f64); 3];
     for (i, s) in scenes(Domain::Mems, 2026, 16).into_iter().enumerate() {
-        let sigma = s.roughness.sigma_s;
+        let sigma = s.roughness().sigma_s();
         let accurate = run(&s, Accuracy::Accurate, 0).unwrap_or_else(|e| {
             panic!(
                 "scene {i}: a plausible MEMS scene failed: {e}\n{}",
@@ -147,7 +148,7 @@ fn modes_meet_their_targets_on_the_wide_ranges_where_the_model_has_an_answer() {
             continue; // e.g. adhesion stronger than any compression: an error, not a number
         };
         answered += 1;
-        let sigma = s.roughness.sigma_s;
+        let sigma = s.roughness().sigma_s();
         for w in accurate.cycles.windows(2) {
             let rise = (w[1].d_e - w[0].d_e) / sigma;
             assert!(
@@ -334,7 +335,7 @@ contact_area_fraction = 0.9467404331859421
     let mut failures = Vec::new();
     let mut compared = 0;
     for (name, s) in &specs {
-        let sigma = s.roughness.sigma_s;
+        let sigma = s.roughness().sigma_s();
         let Ok(accurate) = run(s, Accuracy::Accurate, 0) else {
             // a film that cannot absorb its impact: no answer to compare
             continue;

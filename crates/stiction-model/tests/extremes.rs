@@ -31,7 +31,7 @@ fn run(spec: &SwitchSpec) -> Result<SwitchResult, ModelError> {
 /// Ok with invariants, or the one error a physical scene may legitimately meet.
 fn check(name: &str, s: &Scene) -> Option<SwitchResult> {
     let spec = spec(name, s);
-    let sigma_s = spec.roughness.sigma_s;
+    let sigma_s = spec.roughness().sigma_s();
     match run(&spec) {
         Ok(r) => {
             // The deepest separation never rises; a cycle whose d_e does not go below it
@@ -195,7 +195,7 @@ fn a_delta_max_argument_has_the_asperity_scenes_domain() {
     use stiction_model::spec::check_delta_max;
     let scene = Scene::paper(Kind::Asperity);
     let spec = AsperitySpec::new(&scene, &LawRegistry::builtin()).unwrap();
-    let r = spec.contact.radius;
+    let r = spec.contact().radius();
     assert!(check_delta_max("delta_max", 1e-8, r).is_ok());
     assert!(check_delta_max("delta_max", 1e3 * r, r).is_ok());
     for bad in [

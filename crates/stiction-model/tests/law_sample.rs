@@ -34,11 +34,11 @@ fn random_mems_scenes_tabulate_to_converged_tables_that_read_back_and_hold_out()
         done += 1;
         let what = format!(
             "scene {done}: {} / {} / eq 1 {} / reload {}\n{}",
-            s.contact.adhesion.name,
-            s.contact.plasticity.name,
-            s.contact.yield_modulus.as_str(),
-            s.contact.reload.as_str(),
-            scenegen::to_toml(&s.common.scene)
+            s.contact().adhesion().name(),
+            s.contact().plasticity().name(),
+            s.contact().yield_modulus().as_str(),
+            s.contact().reload().as_str(),
+            scenegen::to_toml(s.common().scene())
         );
         let r = match law::tabulate(LawScene::Switch(&s), &LawOptions::default(), &Silent) {
             Ok(r) => r,

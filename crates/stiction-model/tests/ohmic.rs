@@ -57,17 +57,17 @@ fn hertzian_surface_meets_the_gw_closed_forms() {
     scene.set_text("contact.plasticity_law", "elastic").unwrap();
     let spec = SurfaceSpec::new(&scene, &LawRegistry::builtin()).unwrap();
     let gw = rough_surface(
-        &spec.contact,
-        spec.roughness,
+        spec.contact(),
+        spec.roughness(),
         Accuracy::Accurate,
         0.0,
         false,
     )
     .unwrap();
     let (sigma, n, r) = (
-        spec.roughness.sigma_s,
-        spec.roughness.asperity_density,
-        spec.contact.radius,
+        spec.roughness().sigma_s(),
+        spec.roughness().asperity_density(),
+        spec.contact().radius(),
     );
     let c = Conduction::new(2.2e-8, 37.7e-9).unwrap();
     let g = move |a: f64| c.spot_conductance(a);
@@ -124,12 +124,12 @@ fn the_hold_balances_and_the_resistance_is_the_spots_in_parallel() {
         r.hold_voltage, r.voltage,
         "default hold: the actuation voltage"
     );
-    let g = &spec.switch;
-    let gap = g.t_d / g.epsilon_r;
-    let p_es = 0.5 * g.epsilon_0 * r.voltage * r.voltage / (gap * gap);
-    let want = (p_es - r.restoring_pressure) / g.contact_area_fraction;
+    let g = spec.switch();
+    let gap = g.t_d() / g.epsilon_r();
+    let p_es = 0.5 * g.epsilon_0() * r.voltage * r.voltage / (gap * gap);
+    let want = (p_es - r.restoring_pressure) / g.contact_area_fraction();
     assert!((r.hold_pressure / want - 1.0).abs() < 1e-12);
-    let conduction = spec.contact.conduction.unwrap();
+    let conduction = spec.contact().conduction().unwrap();
     for c in &r.cycles {
         assert_eq!(c.hold_status, "rests");
         let h = c.hold.as_ref().unwrap();
@@ -147,7 +147,7 @@ fn the_hold_balances_and_the_resistance_is_the_spots_in_parallel() {
         assert_eq!(e.separation, c.d_e);
         assert!(h.real_contact_fraction < e.real_contact_fraction);
         assert!(h.contact_resistance.unwrap() > e.contact_resistance.unwrap());
-        let area = g.contact_area_fraction * g.electrode_area.unwrap();
+        let area = g.contact_area_fraction() * g.electrode_area().unwrap();
         let spots = h.spots.unwrap();
         assert!((spots / (h.spot_density * area) - 1.0).abs() < 1e-12);
         // the spots of the mean radius in parallel: the Wexler resistance is decreasing
@@ -260,8 +260,8 @@ fn no_conduction_no_resistance_and_the_keys_say_what_is_missing() {
 #[test]
 fn a_hold_force_is_a_pressure_over_the_contact_area() {
     let (spec, r) = run(&switch_scene(&[("switch.hold_force", "2e-3")]));
-    let g = &spec.switch;
-    let want = 2e-3 / (g.contact_area_fraction * g.electrode_area.unwrap());
+    let g = spec.switch();
+    let want = 2e-3 / (g.contact_area_fraction() * g.electrode_area().unwrap());
     assert!((r.hold_pressure / want - 1.0).abs() < 1e-12);
     let h = r.cycles[0].hold.as_ref().unwrap();
     assert!((h.contact_pressure / want - 1.0).abs() < 1e-6);

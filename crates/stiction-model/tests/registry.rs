@@ -221,7 +221,7 @@ fn a_key_left_out_takes_the_registry_default_for_every_kind() {
                 s.set_number("dynamics.areal_mass", 0.0246).unwrap();
             }
             let resolved = match Spec::new(&s, &registry) {
-                Ok(spec) => spec.common().resolved.clone(),
+                Ok(spec) => spec.common().resolved().clone(),
                 Err(e) => {
                     // a required key's absence is an error that names it
                     assert!(
@@ -278,7 +278,7 @@ fn the_law_parameter_defaults_are_the_laws_declared_ones() {
     let mut s = Scene::paper(Kind::Switch);
     s.remove("contact.effective_radius");
     let spec = SwitchSpec::new(&s, &LawRegistry::builtin()).unwrap();
-    let p = &spec.contact.plasticity.params;
+    let p = spec.contact().plasticity().params();
     assert_eq!(p.triple("c1"), Some([0.22, 0.6242, 0.092]));
     assert_eq!(p.triple("c2"), Some([10.0, 10.0, 5.0]));
 }

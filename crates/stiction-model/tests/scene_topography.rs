@@ -72,7 +72,7 @@ fn registry() -> LawRegistry {
 
 fn resolved<'a>(s: &'a SwitchSpec, key: &str) -> &'a toml::Value {
     let (section, leaf) = key.split_once('.').unwrap();
-    &s.common.resolved[section][leaf]
+    &s.common().resolved()[section][leaf]
 }
 
 #[test]
@@ -84,9 +84,9 @@ fn a_switch_scene_takes_its_roughness_and_radius_from_a_map_beside_it() {
     let s = SwitchSpec::new(&Scene::read(&p).unwrap(), &registry()).unwrap();
     let want = topo::scene_surface(&d.join("afm.x3p"), &TopographyRequest::default()).unwrap();
     assert_eq!(want.route, topo::Route::Summits);
-    assert_eq!(s.roughness.sigma_s, want.gw.sigma_s);
-    assert_eq!(s.roughness.asperity_density, want.gw.asperity_density);
-    assert_eq!(s.contact.radius, want.gw.radius);
+    assert_eq!(s.roughness().sigma_s(), want.gw.sigma_s);
+    assert_eq!(s.roughness().asperity_density(), want.gw.asperity_density);
+    assert_eq!(s.contact().radius(), want.gw.radius);
     // the same numbers as `stiction topography` (summit route, no cutoff)
     let run = topo::run(&d.join("afm.x3p"), &TopographyRequest::default()).unwrap();
     assert_eq!(run.report.summits.as_ref().unwrap().gw, want.gw);
@@ -116,13 +116,17 @@ fn a_switch_scene_takes_its_roughness_and_radius_from_a_map_beside_it() {
         resolved(&s, "contact.radius").as_float(),
         Some(want.gw.radius)
     );
-    assert!(s.common.notes.is_empty());
+    assert!(s.common().notes().is_empty());
     // the echo runs as the scene it came from
-    let echo = Scene::from_tree("echo", s.common.resolved.clone());
+    let echo = Scene::from_tree("echo", s.common().resolved().clone());
     let again = SwitchSpec::new(&echo, &registry()).unwrap();
-    assert_eq!(again.roughness, s.roughness);
-    assert_eq!(again.contact.radius, s.contact.radius);
-    assert!(again.common.notes.is_empty(), "{:?}", again.common.notes);
+    assert_eq!(again.roughness(), s.roughness());
+    assert_eq!(again.contact().radius(), s.contact().radius());
+    assert!(
+        again.common().notes().is_empty(),
+        "{:?}",
+        again.common().notes()
+    );
     // the spectral route
     let p = switch_scene(
         &d,
@@ -130,8 +134,8 @@ fn a_switch_scene_takes_its_roughness_and_radius_from_a_map_beside_it() {
         &[],
     );
     let s = SwitchSpec::new(&Scene::read(&p).unwrap(), &registry()).unwrap();
-    assert_eq!(s.roughness.sigma_s, run.report.spectral.gw.sigma_s);
-    assert_eq!(s.contact.radius, run.report.spectral.gw.radius);
+    assert_eq!(s.roughness().sigma_s(), run.report.spectral.gw.sigma_s);
+    assert_eq!(s.contact().radius(), run.report.spectral.gw.radius);
 }
 
 #[test]
@@ -145,8 +149,8 @@ fn keys_the_scene_gives_win_with_a_note_naming_both_values() {
     );
     let scene = Scene::read(&p).unwrap();
     let s = SwitchSpec::new(&scene, &registry()).unwrap();
-    assert_eq!(s.roughness.sigma_s, 5e-9);
-    assert_eq!(s.contact.radius, 4e-6);
+    assert_eq!(s.roughness().sigma_s(), 5e-9);
+    assert_eq!(s.contact().radius(), 4e-6);
     // contact.radius given: the band is the contact's, 4 sqrt(R sigma_s)
     let w = resolved(&s, "surface.topography_cutoff")
         .as_float()
@@ -158,8 +162,8 @@ fn keys_the_scene_gives_win_with_a_note_naming_both_values() {
     let want = topo::scene_surface(&d.join("afm.x3p"), &req).unwrap();
     assert_eq!(Some(w), want.cutoff.wavelength);
     assert!(w > 0.0 && want.cutoff.applied);
-    assert_eq!(s.roughness.asperity_density, want.gw.asperity_density);
-    let notes = &s.common.notes;
+    assert_eq!(s.roughness().asperity_density(), want.gw.asperity_density);
+    let notes = s.common().notes();
     assert_eq!(notes.len(), 2, "{notes:?}");
     for (n, key, given, map) in [
         (&notes[0], "surface.sigma_s", "5e-9", want.gw.sigma_s),
@@ -184,11 +188,11 @@ fn keys_the_scene_gives_win_with_a_note_naming_both_values() {
     e.set_number("surface.topography_cutoff", 0.0).unwrap();
     let s0 = SwitchSpec::new(&e, &registry()).unwrap();
     let plain = topo::scene_surface(&d.join("afm.x3p"), &TopographyRequest::default()).unwrap();
-    assert_eq!(s0.roughness.asperity_density, plain.gw.asperity_density);
+    assert_eq!(s0.roughness().asperity_density(), plain.gw.asperity_density);
     // a longer cutoff, fewer asperities
     e.set_number("surface.topography_cutoff", 0.4e-6).unwrap();
     let s1 = SwitchSpec::new(&e, &registry()).unwrap();
-    assert!(s1.roughness.asperity_density < s0.roughness.asperity_density);
+    assert!(s1.roughness().asperity_density() < s0.roughness().asperity_density());
 }
 
 #[test]
@@ -204,7 +208,7 @@ fn a_surface_scene_takes_a_map_too_and_options_without_a_map_are_refused() {
     )
     .unwrap();
     let spec = SurfaceSpec::new(&s, &registry()).unwrap();
-    assert!(spec.roughness.sigma_s > 1e-9 && spec.roughness.sigma_s < 2e-8);
+    assert!(spec.roughness().sigma_s() > 1e-9 && spec.roughness().sigma_s() < 2e-8);
     // an option without the file
     let mut s = Scene::paper(Kind::Switch);
     s.set_text("surface.topography_route", "spectral").unwrap();
@@ -365,10 +369,10 @@ fn merged_scenes_take_the_later_value_and_name_the_file_of_each_key() {
     assert_eq!(s.dir_of("surface.topography"), Some(b.as_path()));
     assert_eq!(s.line_of("switch.d0"), Some(7));
     let spec = SwitchSpec::new(&s, &registry()).unwrap();
-    assert_eq!(spec.switch.d0, 3e-6);
-    assert_eq!(spec.roughness.sigma_s, 6e-9);
+    assert_eq!(spec.switch().d0(), 3e-6);
+    assert_eq!(spec.roughness().sigma_s(), 6e-9);
     // explicit keys of either file win over the map: sigma_s (b) and radius (a)
-    assert_eq!(spec.contact.radius, 4e-6);
+    assert_eq!(spec.contact().radius(), 4e-6);
     let plain = topo::scene_surface(
         &b.join("afm.x3p"),
         &TopographyRequest {
@@ -378,12 +382,18 @@ fn merged_scenes_take_the_later_value_and_name_the_file_of_each_key() {
     )
     .unwrap();
     assert_eq!(
-        spec.roughness.asperity_density, 1e13,
+        spec.roughness().asperity_density(),
+        1e13,
         "switch.toml gives it"
     );
-    assert_eq!(spec.common.notes.len(), 3, "{:?}", spec.common.notes);
-    assert!(spec.common.notes[0].message.contains("surface.toml"));
-    assert!(spec.common.notes[1].message.contains("switch.toml"));
+    assert_eq!(
+        spec.common().notes().len(),
+        3,
+        "{:?}",
+        spec.common().notes()
+    );
+    assert!(spec.common().notes()[0].message.contains("surface.toml"));
+    assert!(spec.common().notes()[1].message.contains("switch.toml"));
     assert!(plain.gw.sigma_s > 0.0);
     // an error names the file that gave the key, with its line
     std::fs::write(b.join("bad.toml"), "[switch]\n\nd0 = -1.0\n").unwrap();
