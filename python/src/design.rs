@@ -55,7 +55,7 @@ pub fn design_threshold(
     let out = result_to_py(py, &r)?;
     let d = out.bind(py).cast::<PyDict>()?;
     d.set_item("warnings", warnings_to_py(py, &r.warnings)?)?;
-    Ok(out)
+    crate::report::with_handle(py, out, crate::report::Kept::Threshold(Box::new(r)))
 }
 
 pub(crate) fn warnings_to_py<'py>(py: Python<'py>, w: &[Warning]) -> PyResult<Bound<'py, PyAny>> {

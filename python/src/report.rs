@@ -14,7 +14,9 @@ use std::path::PathBuf;
 use stiction_model::asperity::AsperityResult;
 use stiction_model::calibration::CalibrationResult;
 use stiction_model::contact_core::Category;
+use stiction_model::design::ThresholdResult;
 use stiction_model::law::LawResult;
+use stiction_model::md::MdResult;
 use stiction_model::surface::SurfaceResult;
 use stiction_model::switch::SwitchResult;
 use stiction_report::topography::TopographyResult;
@@ -45,6 +47,10 @@ pub enum Kept {
     Calibration(Box<CalibrationResult>),
     /// `stiction topography`.
     Topography(Box<TopographyResult>),
+    /// `stiction design threshold` (a table, no figure).
+    Threshold(Box<ThresholdResult>),
+    /// `stiction md` (a table, no figure).
+    Md(Box<MdResult>),
 }
 
 /// A result of the library kept for its presentation.
@@ -60,9 +66,13 @@ pub fn save<R: Report + Sync>(py: Python<'_>, report: &R, dir: PathBuf) -> PyRes
     Ok(written.iter().map(|p| p.display().to_string()).collect())
 }
 
-/// `$body` with `$r` bound to the kept result, whatever its kind.
+/// `$body` with `$r` bound to the kept result, whatever its kind; `$other` for the kinds
+/// that have no figure (with `drawn`).
 macro_rules! each {
     ($kept:expr, $r:ident => $body:expr) => {
+        each!($kept, $r => $body, drawn $r => $body)
+    };
+    ($kept:expr, $r:ident => $body:expr, drawn $d:ident => $other:expr) => {
         match $kept {
             Kept::Switch($r) => $body,
             Kept::Surface($r) => $body,
@@ -70,8 +80,19 @@ macro_rules! each {
             Kept::Law($r) => $body,
             Kept::Calibration($r) => $body,
             Kept::Topography($r) => $body,
+            Kept::Threshold($d) => $other,
+            Kept::Md($d) => $other,
         }
     };
+}
+
+/// The error of `to_svg()` on a result whose command draws no figure.
+fn no_figure() -> PyErr {
+    crate::errors::exception(
+        Category::Input,
+        "this result has no figure: its command prints a table only (table())".into(),
+        None,
+    )
 }
 
 #[pymethods]
@@ -89,7 +110,7 @@ impl PyReport {
     /// The figure: `switch.svg`, `surface.svg` (`--plot`), `asperity.svg` (`--plot`),
     /// `law.svg`, the calibration overlay (`--plot`), `topography.svg`.
     fn to_svg(&self) -> PyResult<String> {
-        each!(&self.kept, r => r.svg()).map_err(report_error)
+        each!(&self.kept, r => r.svg().map_err(report_error), drawn _r => Err(no_figure()))
     }
 
     /// `dynamics.svg` of a switch in time (None for a quasi-static run, without curves,

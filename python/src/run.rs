@@ -104,7 +104,7 @@ pub fn md_curve(py: Python<'_>, lam: f64, points: i64, delta_end: f64) -> PyResu
     }
     let r =
         crate::pool::detach(py, move || md::curve(lam, points as usize, delta_end)).or_raise()?;
-    result_to_py(py, &r)
+    crate::report::result(py, crate::report::Kept::Md(Box::new(r)))
 }
 
 /// Calibration of eq 13 (`stiction calibrate`): `fe` a CSV path, or `fe_text` CSV text

@@ -450,13 +450,17 @@ def _convert(value: Any, hint: Any) -> Any:
     return value
 
 
-class _Drawn:
+class _Tabled:
     """A result the library keeps for its presentation (``stiction-report``, the command
-    line's own): ``table()`` is what the command prints, ``to_svg()`` its figure."""
+    line's own): ``table()`` is what the command prints."""
 
     def table(self) -> str:
         """What the command prints (``--format table``)."""
         return self._report.table()  # type: ignore[attr-defined, no-any-return]
+
+
+class _Drawn(_Tabled):
+    """A result with a figure too: ``to_svg()``."""
 
     def to_svg(self) -> str:
         """The figure as SVG text, byte for byte the command's (``--plot`` or the SVG of
@@ -763,7 +767,7 @@ class AsperityResult(_Drawn, Record):
 # ---------------------------------------------------------------- Maugis-Kim
 
 
-class MdResult(Record):
+class MdResult(_Tabled, Record):
     """The nondimensional Maugis-Kim curve and its landmarks (``stiction md``):
     Delta = delta / (pi^2 w^2 R / K^2)^(1/3), Fbar = F / (pi w R)."""
 
@@ -934,7 +938,7 @@ class DesignMap(Record):
         return xr.Dataset(data, coords=coords, attrs={"accuracy": self.accuracy, "format": self.format})
 
 
-class ThresholdResult(Record):
+class ThresholdResult(_Tabled, Record):
     """The critical value of one scene field (``stiction design threshold``): where the
     pull-out ratio after accommodation crosses 1."""
 

@@ -226,3 +226,22 @@ def test_a_result_without_an_out_folder_says_so(switch_run):
     with pytest.raises(stiction.InputError, match="no --out folder"):
         r._report.save("/nonexistent")
     assert switch_run == switch_run and r.to_svg().startswith("<svg")
+
+
+def test_a_threshold_and_a_curve_print_the_command_lines_table(cli, paper_switch):
+    # results whose commands print a table only: table() is that table, to_svg() says why not
+    t = stiction.design_threshold(paper_switch, "surface.sigma_s", 2e-9, 1e-7, accuracy="fast")
+    p = cli.run(
+        "design", "threshold", "--vary", "surface.sigma_s", "--from", "2e-9", "--to", "1e-7",
+        "--accuracy", "fast", "--format", "table",
+    )
+    assert p.returncode == 0, p.stderr
+    assert t.table() and p.stdout == t.table()
+    m = stiction.md_curve(0.7, points=40)
+    p = cli.run("md", "--lambda", "0.7", "--points", "40", "--format", "table")
+    assert p.returncode == 0, p.stderr
+    assert m.table() and p.stdout == m.table()
+    for r in (t, m):
+        with pytest.raises(stiction.InputError, match="no figure"):
+            r._report.to_svg()
+        assert not hasattr(r, "to_svg") and not hasattr(r, "save")
