@@ -151,29 +151,10 @@ fn json_holds_the_contract_and_the_exact_answer_lies_in_the_interval() {
     assert!(half <= 0.2 && t["stopping"]["halfwidth"].as_f64() == Some(half));
 }
 
-/// The polylines of an SVG with `points` points (the data lines, in drawing order), as
-/// (x, y) pixel pairs.
-fn data_lines(svg: &str, points: usize) -> Vec<Vec<(f64, f64)>> {
-    svg.split("<polyline")
-        .skip(1)
-        .filter_map(|p| {
-            let start = p.find("points=\"")? + "points=\"".len();
-            let list = &p[start..start + p[start..].find('"')?];
-            let xy: Vec<(f64, f64)> = list
-                .split_whitespace()
-                .map(|pair| {
-                    let (x, y) = pair.split_once(',').expect("x,y");
-                    (x.parse().unwrap(), y.parse().unwrap())
-                })
-                .collect();
-            (xy.len() == points).then_some(xy)
-        })
-        .collect()
-}
-
-/// The corner lists of the SVG's polygons of exactly `points` corners.
-fn polygons(svg: &str, points: usize) -> Vec<Vec<(f64, f64)>> {
-    svg.split("<polygon")
+/// The `<tag>` elements (polyline, polygon) of an SVG with exactly `points` points, in
+/// drawing order, as (x, y) pixel pairs.
+fn shapes(svg: &str, tag: &str, points: usize) -> Vec<Vec<(f64, f64)>> {
+    svg.split(&format!("<{tag} "))
         .skip(1)
         .filter_map(|p| {
             let start = p.find("points=\"")? + "points=\"".len();
@@ -281,10 +262,10 @@ fn shards_merged_equal_one_run_byte_for_byte_on_any_thread_count() {
         svg.contains("95 % confidence interval (Clopper-Pearson)"),
         "the band is not in the legend"
     );
-    let lines = data_lines(&svg, 3);
+    let lines = shapes(&svg, "polyline", 3);
     assert_eq!(lines.len(), 1, "the curve, one point per cycle");
     let curve = &lines[0];
-    let bands = polygons(&svg, 6);
+    let bands = shapes(&svg, "polygon", 6);
     assert_eq!(bands.len(), 1, "one band of 2 x 3 points");
     let (lower, upper): (Vec<_>, Vec<_>) = (
         bands[0][..3].to_vec(),

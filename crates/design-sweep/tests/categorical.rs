@@ -4,59 +4,14 @@
 
 mod common;
 
-use common::point;
-use design_sweep::{
-    merge, run_map, Axis, DesignError, DesignPoint, Grid, Level, Map, MapRequest, PointError, Shard,
-};
-use serde_json::json;
-
-const LAWS: &str = "contact.plasticity_law=etsion_kadin,kogut_etsion,elastic";
+use common::laws::{run, LAWS};
+use design_sweep::{merge, Axis, DesignError, Level, Map, Shard};
 
 fn axis_err(option: &str) -> String {
     match Axis::parse(option) {
         Err(e @ DesignError::Axis { .. }) => e.to_string(),
         other => panic!("{option}: expected an axis error, got {other:?}"),
     }
-}
-
-/// A stand-in for a switch whose law scales the pull-out: ratio = c_law (2e3 / k)^2, with
-/// c = 1 (etsion_kadin), 2 (kogut_etsion), 0.5 (elastic); critical k = 2e3 sqrt(c).
-fn scale(word: &str) -> Option<f64> {
-    match word {
-        "etsion_kadin" => Some(1.0),
-        "kogut_etsion" => Some(2.0),
-        "elastic" => Some(0.5),
-        _ => None,
-    }
-}
-
-fn by_law(values: &[(&str, Level)]) -> Result<DesignPoint, PointError> {
-    let mut c = 1.0;
-    let mut k = 1e3;
-    for (field, v) in values {
-        match (*field, v) {
-            ("contact.plasticity_law", Level::Word(w)) => {
-                c = scale(w).ok_or_else(|| PointError::OutOfDomain(format!("no law {w}")))?
-            }
-            ("switch.k_s", Level::Number(x)) => k = *x,
-            ("contact.reload", Level::Word(_)) => {}
-            (f, v) => return Err(PointError::Failed(format!("unexpected {f} = {v}"))),
-        }
-    }
-    Ok(point(c * (2e3 / k).powi(2), k))
-}
-
-fn request(specs: &[&str], shard: Option<Shard>) -> MapRequest {
-    MapRequest {
-        scene: json!({"name": "laws"}),
-        grid: Grid::parse(specs).unwrap(),
-        accuracy: "fast".into(),
-        shard,
-    }
-}
-
-fn run(specs: &[&str], shard: Option<Shard>) -> Map {
-    run_map(request(specs, shard), by_law, |_, _| {})
 }
 
 #[test]

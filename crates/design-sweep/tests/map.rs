@@ -2,31 +2,10 @@
 
 mod common;
 
+use common::maps::{request, run, scene, GRID_2D};
 use common::{power, product};
-use design_sweep::{merge, run_map, DesignError, Grid, Level, Map, MapRequest, Shard};
+use design_sweep::{merge, run_map, DesignError, Level, Map, Shard};
 use serde_json::{json, Value};
-
-fn scene() -> Value {
-    json!({"switch": {"d0": 2e-6, "k_s": 1.234567890123e3}, "name": "paper", "surface": {"sigma_s": 3.1e-9}})
-}
-
-fn request(specs: &[&str], shard: Option<Shard>) -> MapRequest {
-    MapRequest {
-        scene: scene(),
-        grid: Grid::parse(specs).unwrap(),
-        accuracy: "balanced".into(),
-        shard,
-    }
-}
-
-const GRID_2D: [&str; 2] = [
-    "switch.k_s=3e2:3e4:log:13",
-    "surface.sigma_s=1e-9:9e-9:lin:7",
-];
-
-fn run(specs: &[&str], shard: Option<Shard>) -> Map {
-    run_map(request(specs, shard), product, |_, _| {})
-}
 
 /// The map as data (its CSV and plot are the presentation crate's, drawn from these
 /// points: `stiction-report`'s tests compare those files byte for byte).

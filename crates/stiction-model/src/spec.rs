@@ -631,18 +631,35 @@ impl Common {
     }
 }
 
-impl AsperitySpec {
-    /// Source, title, accuracy, points.
-    #[must_use]
-    pub fn common(&self) -> &Common {
-        &self.common
-    }
+/// The getters every kind of spec shares (`common()`, `contact()`), and `roughness()` for
+/// the kinds with a rough surface.
+macro_rules! shared_getters {
+    () => {
+        /// Source, title, accuracy, points.
+        #[must_use]
+        pub fn common(&self) -> &Common {
+            &self.common
+        }
 
-    /// The contact.
-    #[must_use]
-    pub fn contact(&self) -> &ContactSpec {
-        &self.contact
-    }
+        /// The contact.
+        #[must_use]
+        pub fn contact(&self) -> &ContactSpec {
+            &self.contact
+        }
+    };
+    (rough) => {
+        shared_getters!();
+
+        /// The roughness.
+        #[must_use]
+        pub fn roughness(&self) -> RoughnessSpec {
+            self.roughness
+        }
+    };
+}
+
+impl AsperitySpec {
+    shared_getters!();
 
     /// The maximum interferences (m).
     #[must_use]
@@ -652,23 +669,7 @@ impl AsperitySpec {
 }
 
 impl SurfaceSpec {
-    /// Source, title, accuracy, points.
-    #[must_use]
-    pub fn common(&self) -> &Common {
-        &self.common
-    }
-
-    /// The contact.
-    #[must_use]
-    pub fn contact(&self) -> &ContactSpec {
-        &self.contact
-    }
-
-    /// The roughness.
-    #[must_use]
-    pub fn roughness(&self) -> RoughnessSpec {
-        self.roughness
-    }
+    shared_getters!(rough);
 
     /// Smallest separation of the loading curve (m), if given.
     #[must_use]
@@ -684,23 +685,7 @@ impl SurfaceSpec {
 }
 
 impl SwitchSpec {
-    /// Source, title, accuracy, points.
-    #[must_use]
-    pub fn common(&self) -> &Common {
-        &self.common
-    }
-
-    /// The contact.
-    #[must_use]
-    pub fn contact(&self) -> &ContactSpec {
-        &self.contact
-    }
-
-    /// The roughness.
-    #[must_use]
-    pub fn roughness(&self) -> RoughnessSpec {
-        self.roughness
-    }
+    shared_getters!(rough);
 
     /// The switch.
     #[must_use]

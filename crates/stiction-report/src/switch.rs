@@ -501,7 +501,7 @@ fn table_dynamics(r: &SwitchResult) -> String {
     };
     let si = stiction_model::guards::si;
     let mut s = format!(
-        "\nin time: m'' = {:.4e} kg/m^2, f0 = {}, gas {} (squeeze film at contact c'' = {})\n",
+        "\nin time: m'' = {:.4e} kg/m^2, f0 = {}, gas {} (squeeze film at contact c'' = {}), integration tolerance {:.0e}\n",
         d.areal_mass,
         si(d.natural_frequency, "Hz", 4),
         if d.gas_pressure > 0.0 {
@@ -510,6 +510,7 @@ fn table_dynamics(r: &SwitchResult) -> String {
             "none (vacuum)".to_string()
         },
         si(d.squeeze_film_coefficient_at_contact, "Pa s/m", 4),
+        d.tolerance,
     );
     let _ = writeln!(
         s,

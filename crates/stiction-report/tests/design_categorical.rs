@@ -4,56 +4,12 @@
 
 mod common;
 
-use common::point;
-use design_sweep::{
-    merge, run_map, DesignPoint, Grid, Labels, Level, Map, MapRequest, PointError, Shard, Status,
-};
+use common::laws::{run, scale, LAWS};
+use design_sweep::{merge, Labels, Level, Map, Shard, Status};
 use serde_json::{json, Value};
 use stiction_report::csv::map_csv;
 use stiction_report::design_table::map_table;
 use stiction_report::plot::map::map_svg;
-
-const LAWS: &str = "contact.plasticity_law=etsion_kadin,kogut_etsion,elastic";
-
-/// A stand-in for a switch whose law scales the pull-out: ratio = c_law (2e3 / k)^2, with
-/// c = 1 (etsion_kadin), 2 (kogut_etsion), 0.5 (elastic); critical k = 2e3 sqrt(c).
-fn scale(word: &str) -> Option<f64> {
-    match word {
-        "etsion_kadin" => Some(1.0),
-        "kogut_etsion" => Some(2.0),
-        "elastic" => Some(0.5),
-        _ => None,
-    }
-}
-
-fn by_law(values: &[(&str, Level)]) -> Result<DesignPoint, PointError> {
-    let mut c = 1.0;
-    let mut k = 1e3;
-    for (field, v) in values {
-        match (*field, v) {
-            ("contact.plasticity_law", Level::Word(w)) => {
-                c = scale(w).ok_or_else(|| PointError::OutOfDomain(format!("no law {w}")))?
-            }
-            ("switch.k_s", Level::Number(x)) => k = *x,
-            ("contact.reload", Level::Word(_)) => {}
-            (f, v) => return Err(PointError::Failed(format!("unexpected {f} = {v}"))),
-        }
-    }
-    Ok(point(c * (2e3 / k).powi(2), k))
-}
-
-fn request(specs: &[&str], shard: Option<Shard>) -> MapRequest {
-    MapRequest {
-        scene: json!({"name": "laws"}),
-        grid: Grid::parse(specs).unwrap(),
-        accuracy: "fast".into(),
-        shard,
-    }
-}
-
-fn run(specs: &[&str], shard: Option<Shard>) -> Map {
-    run_map(request(specs, shard), by_law, |_, _| {})
-}
 
 fn labels() -> Labels {
     Labels::new().with_unit("switch.k_s", "Pa/m")

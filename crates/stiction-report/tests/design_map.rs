@@ -2,38 +2,16 @@
 
 mod common;
 
-use common::{flaky, product};
+use common::flaky;
+use common::maps::{request, run, GRID_2D};
 use design_sweep::{
-    merge, run_map, DesignPoint, Grid, Labels, Level, Map, MapRequest, PointError, Shard, Status,
-    CSV_COLUMNS,
+    merge, run_map, DesignPoint, Labels, Level, Map, PointError, Shard, Status, CSV_COLUMNS,
 };
-use serde_json::{json, Value};
+use serde_json::Value;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use stiction_report::csv::map_csv;
 use stiction_report::design_table::map_table;
 use stiction_report::plot::map::map_svg;
-
-fn scene() -> Value {
-    json!({"switch": {"d0": 2e-6, "k_s": 1.234567890123e3}, "name": "paper", "surface": {"sigma_s": 3.1e-9}})
-}
-
-fn request(specs: &[&str], shard: Option<Shard>) -> MapRequest {
-    MapRequest {
-        scene: scene(),
-        grid: Grid::parse(specs).unwrap(),
-        accuracy: "balanced".into(),
-        shard,
-    }
-}
-
-const GRID_2D: [&str; 2] = [
-    "switch.k_s=3e2:3e4:log:13",
-    "surface.sigma_s=1e-9:9e-9:lin:7",
-];
-
-fn run(specs: &[&str], shard: Option<Shard>) -> Map {
-    run_map(request(specs, shard), product, |_, _| {})
-}
 
 fn labels() -> Labels {
     Labels::new()

@@ -5,85 +5,9 @@
 
 mod common;
 
-use common::point;
-use design_sweep::{
-    merge_probability, run_probability, stats, Correlation, DesignError, DesignPoint, Outcome,
-    PointError, Probability, ProbabilityPlan, Scatter, Shard,
-};
+use common::*;
+use design_sweep::{merge_probability, stats, DesignError, Outcome, Probability, Shard};
 use stiction_report::csv::samples_csv;
-
-const CYCLES: usize = 10;
-
-/// A switch whose pull-out ratio after accommodation is `ratio`, reached over the cycles as
-/// ratio_n = ratio (1 - 2^-n) / (1 - 2^-CYCLES): the first sticking cycle is the first n
-/// with ratio_n > 1.
-fn cycled(ratio: f64, restoring: f64) -> DesignPoint {
-    let mut d = point(ratio, restoring);
-    let g = |n: usize| (1.0 - 0.5f64.powi(n as i32)) / (1.0 - 0.5f64.powi(CYCLES as i32));
-    d.first_sticking_cycle = (1..=CYCLES).find(|&n| ratio * g(n) > 1.0);
-    d.sticks = d.first_sticking_cycle.is_some();
-    d
-}
-
-fn plan(scatter: &[&str], samples: usize, seed: u64) -> ProbabilityPlan {
-    ProbabilityPlan {
-        scene: serde_json::json!({"title": "stand-in"}),
-        accuracy: "fast".into(),
-        ratio_rel_error: 1e-4,
-        scatter: scatter.iter().map(|s| Scatter::parse(s).unwrap()).collect(),
-        correlations: Vec::new(),
-        seed,
-        samples,
-        confidence: 0.95,
-        cycles: CYCLES,
-        target_halfwidth: None,
-        shard: None,
-        count_outside_validity: false,
-    }
-}
-
-fn run<F>(p: ProbabilityPlan, f: F) -> Probability
-where
-    F: Fn(&[(&str, f64)]) -> Result<DesignPoint, PointError> + Sync,
-{
-    run_probability(p, f, |_, _| {}).unwrap()
-}
-
-/// A stand-in with every kind of sample: failures, refusals, outside validity, switches
-/// that do not close, and a panic.
-fn mixed(v: &[(&str, f64)]) -> Result<DesignPoint, PointError> {
-    let (k, w) = (v[0].1, v[1].1);
-    if k < 2.0 {
-        return Err(PointError::OutOfDomain(format!("switch.k_s = {k} below 2")));
-    }
-    if (4.0..4.1).contains(&k) {
-        return Err(PointError::Failed("no convergence".into()));
-    }
-    if (5.0..5.1).contains(&k) {
-        panic!("a bug");
-    }
-    if k > 9.0 {
-        return Ok(DesignPoint::does_not_close(k));
-    }
-    let mut d = cycled(w * 6.0 / k, k);
-    if w > 1.3 {
-        d.validity_holds = false;
-    }
-    Ok(d)
-}
-
-fn mixed_plan(samples: usize) -> ProbabilityPlan {
-    let mut p = plan(
-        &[
-            "switch.k_s=uniform(1.5,10)",
-            "contact.work_of_adhesion=lognormal(1,1.2)",
-        ],
-        samples,
-        42,
-    );
-    p.correlations = vec![Correlation::parse("switch.k_s,contact.work_of_adhesion=0.3").unwrap()];
-    p
-}
 
 #[test]
 fn samples_apart_stay_out_of_the_denominator() {

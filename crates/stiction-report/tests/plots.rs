@@ -20,7 +20,7 @@ use stiction_model::topography::{
 };
 use stiction_model::Silent;
 use stiction_report::plot::map::{fmt_sig, map_svg, INVALID};
-use stiction_report::plot::{self, Band, Panel, Series, CHAR_WIDTH};
+use stiction_report::plot::{self, Panel, Series, CHAR_WIDTH};
 use stiction_report::topography::TopographyResult;
 use stiction_report::Plot;
 
@@ -199,29 +199,7 @@ fn evenly_whole(ticks: &[f64], last: f64) {
 fn cycles_are_counted_in_whole_numbers() {
     // a probability against cycle under 1 (so every y tick has a decimal point): the x
     // ticks are exactly the whole cycles, none "1.0" or "1.5"
-    let xs: Vec<f64> = (1..=12).map(f64::from).collect();
-    let p: Vec<(f64, f64)> = xs.iter().map(|&x| (x, 0.5 - 0.3 / x)).collect();
-    let svg = plot::svg(
-        "P against cycle",
-        &[Panel {
-            caption: "P with its interval".into(),
-            x_label: "cycle n [count]".into(),
-            y_label: "P [-]".into(),
-            series: vec![Series {
-                name: "P".into(),
-                points: p.clone(),
-                colour: None,
-            }],
-            bands: vec![Band {
-                name: "95 % interval".into(),
-                points: p.iter().map(|&(x, y)| (x, y - 0.05, y + 0.05)).collect(),
-                colour: None,
-            }],
-            x_range: Some((0.5, 12.5)),
-            ..Default::default()
-        }],
-    )
-    .unwrap();
+    let svg = common::against_cycle(12, true, None);
     let (whole, other) = ticks(&svg);
     evenly_whole(&whole, 12.0);
     assert!(
@@ -237,24 +215,7 @@ fn cycles_are_counted_in_whole_numbers() {
         .count();
     assert_eq!(shaded, 1, "the band as one shaded polygon");
     // 40 cycles: whole steps (5, 10, ...), still no decimals
-    let long: Vec<(f64, f64)> = (1..=40)
-        .map(|k| (f64::from(k), 0.1 + 0.01 * f64::from(k)))
-        .collect();
-    let svg = plot::svg(
-        "40 cycles",
-        &[Panel {
-            x_label: "cycle [count]".into(),
-            y_label: "P [-]".into(),
-            series: vec![Series {
-                name: "P".into(),
-                points: long,
-                colour: None,
-            }],
-            x_range: Some((0.5, 40.5)),
-            ..Default::default()
-        }],
-    )
-    .unwrap();
+    let svg = common::against_cycle(40, false, None);
     let (whole, other) = ticks(&svg);
     evenly_whole(&whole, 40.0);
     assert!(

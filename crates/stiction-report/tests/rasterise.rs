@@ -18,7 +18,6 @@ use stiction_model::spec::SwitchSpec;
 use stiction_model::switch::{SwitchModel, SwitchResult};
 use stiction_model::Silent;
 use stiction_report::plot::map::map_svg;
-use stiction_report::plot::{self, Band, Panel, Series};
 use stiction_report::Plot;
 
 fn switch_result() -> SwitchResult {
@@ -58,40 +57,16 @@ fn labels() -> Labels {
         .with_unit("surface.sigma_s", "m")
 }
 
-/// A line figure with a band and a count on the x axis.
-fn banded() -> String {
-    let xs: Vec<f64> = (1..=12).map(f64::from).collect();
-    let p: Vec<(f64, f64)> = xs.iter().map(|&x| (x, 0.5 - 0.3 / x)).collect();
-    plot::svg(
-        "a band, a line, whole cycles",
-        &[Panel {
-            caption: "P with its interval".into(),
-            x_label: "cycle n [count]".into(),
-            y_label: "P [-]".into(),
-            series: vec![Series {
-                name: "P".into(),
-                points: p.clone(),
-                colour: None,
-            }],
-            bands: vec![Band {
-                name: "95 % interval".into(),
-                points: p.iter().map(|&(x, y)| (x, y - 0.05, y + 0.05)).collect(),
-                colour: None,
-            }],
-            y_range: Some((0.0, 1.0)),
-            ..Default::default()
-        }],
-    )
-    .unwrap()
-}
-
 /// Every figure the structural test reads: (name, SVG).
 fn figures() -> Vec<(&'static str, String)> {
     vec![
         ("switch.svg", switch_result().svg().unwrap()),
         ("map_2d.svg", map_svg(&map_2d(), &labels()).unwrap()),
         ("map_1d.svg", map_svg(&map_1d(), &labels()).unwrap()),
-        ("banded.svg", banded()),
+        (
+            "banded.svg",
+            common::against_cycle(12, true, Some((0.0, 1.0))),
+        ),
     ]
 }
 

@@ -1500,23 +1500,11 @@ pub fn run_cycles<S: SurfaceLaw>(
                 })
             })?;
         }
-        let deepest_before = cycles.iter().map(|c| c.end.d_e).reduce(f64::min);
-        let deepened = deepest_before.is_none_or(|d| end.d_e < d);
-        let shallower_by = deepest_before.map_or(0.0, |d| (end.d_e - d).max(0.0));
-        if let Some(prev) = cycles.last() {
-            let dp = (unloading.pull_out_pressure - prev.unloading.pull_out_pressure).abs();
-            let dd = (end.d_e - prev.end.d_e).abs();
-            if accommodated_after.is_none()
-                && dp <= tol * unloading.pull_out_pressure.abs().max(f64::MIN_POSITIVE)
-                && dd <= tol * scale
-            {
-                accommodated_after = Some(prev.cycle);
-                accommodation_cause = Some(if deepened {
-                    AccommodationCause::Saturated
-                } else {
-                    AccommodationCause::NonDeepening
-                });
-            }
+        let (deepened, shallower_by, repeats) =
+            against_before(&cycles, end.d_e, unloading.pull_out_pressure, tol, scale);
+        if let (None, Some((after, cause))) = (accommodated_after, repeats) {
+            accommodated_after = Some(after);
+            accommodation_cause = Some(cause);
         }
         let ratio = impact.pull_out_ratio(unloading.pull_out_pressure);
         hist = new_hist.clone();
@@ -1561,6 +1549,38 @@ pub fn run_cycles<S: SurfaceLaw>(
         accommodated_after,
         cycles,
     })
+}
+
+/// A new cycle (deepest separation `d_e`, pull-out pressure `pull_out`) against the cycles
+/// before it: whether it deepened the history (its d_e below every earlier one), how far
+/// above the deepest earlier d_e it stopped (0 if it deepened), and, where it repeats the
+/// last cycle (pull-out within `tol` relative, d_e within `tol` x `scale`), the
+/// accommodation it shows: after the last cycle, `Saturated` if this one still deepened,
+/// else `NonDeepening`. The quasi-static and the dynamic runners judge cycles by it.
+#[must_use]
+pub fn against_before<H>(
+    cycles: &[Cycle<H>],
+    d_e: f64,
+    pull_out: f64,
+    tol: f64,
+    scale: f64,
+) -> (bool, f64, Option<(usize, AccommodationCause)>) {
+    let deepest_before = cycles.iter().map(|c| c.end.d_e).reduce(f64::min);
+    let deepened = deepest_before.is_none_or(|d| d_e < d);
+    let shallower_by = deepest_before.map_or(0.0, |d| (d_e - d).max(0.0));
+    let repeats = cycles.last().and_then(|prev| {
+        let dp = (pull_out - prev.unloading.pull_out_pressure).abs();
+        let dd = (d_e - prev.end.d_e).abs();
+        (dp <= tol * pull_out.abs().max(f64::MIN_POSITIVE) && dd <= tol * scale).then(|| {
+            let cause = if deepened {
+                AccommodationCause::Saturated
+            } else {
+                AccommodationCause::NonDeepening
+            };
+            (prev.cycle, cause)
+        })
+    });
+    (deepened, shallower_by, repeats)
 }
 
 /// The step of the differences that carry a history's error into a pull-out, in the

@@ -33,9 +33,9 @@ mod error;
 mod switch;
 
 pub use cycles::{
-    carry_history_errors, end_of_impact, eq17_residual, pull_out_grid, rest, run_cycles, unload,
-    AccommodationCause, Cycle, CycleOptions, CycleRun, EndOfImpact, Impact, ImpactFilm, Precision,
-    PressurePoint, Rest, Unloading,
+    against_before, carry_history_errors, end_of_impact, eq17_residual, pull_out_grid, rest,
+    run_cycles, unload, AccommodationCause, Cycle, CycleOptions, CycleRun, EndOfImpact, Impact,
+    ImpactFilm, Precision, PressurePoint, Rest, Unloading,
 };
 pub use error::SwitchError;
 pub use switch::{Switch, SwitchGeometry, EPSILON_0};

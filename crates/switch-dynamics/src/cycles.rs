@@ -8,7 +8,7 @@ use crate::release::{release, Release};
 use crate::DynamicsError;
 use contact_core::{Path, SurfaceLaw};
 use switch_1d::{
-    carry_history_errors, unload, AccommodationCause, Cycle, CycleOptions, CycleRun, EndOfImpact,
+    against_before, carry_history_errors, unload, Cycle, CycleOptions, CycleRun, EndOfImpact,
     Impact, ImpactFilm, PressurePoint,
 };
 
@@ -110,23 +110,11 @@ pub fn run_cycles<S: SurfaceLaw>(
             &plate,
             dynamics.tolerance,
         )?;
-        let deepest_before = cycles.iter().map(|c| c.end.d_e).reduce(f64::min);
-        let deepened = deepest_before.is_none_or(|d| d_e < d);
-        let shallower_by = deepest_before.map_or(0.0, |d| (d_e - d).max(0.0));
-        if let Some(prev) = cycles.last() {
-            let dp = (unloading.pull_out_pressure - prev.unloading.pull_out_pressure).abs();
-            let dd = (d_e - prev.end.d_e).abs();
-            if accommodated_after.is_none()
-                && dp <= tol * unloading.pull_out_pressure.abs().max(f64::MIN_POSITIVE)
-                && dd <= tol * scale
-            {
-                accommodated_after = Some(prev.cycle);
-                accommodation_cause = Some(if deepened {
-                    AccommodationCause::Saturated
-                } else {
-                    AccommodationCause::NonDeepening
-                });
-            }
+        let (deepened, shallower_by, repeats) =
+            against_before(&cycles, d_e, unloading.pull_out_pressure, tol, scale);
+        if let (None, Some((after, cause))) = (accommodated_after, repeats) {
+            accommodated_after = Some(after);
+            accommodation_cause = Some(cause);
         }
         let ratio = judge.pull_out_ratio(unloading.pull_out_pressure);
         cycles.push(Cycle {

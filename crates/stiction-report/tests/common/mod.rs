@@ -1,65 +1,43 @@
-//! Analytic evaluators with known stiction boundaries.
+//! The design-sweep tests' analytic evaluators and stand-ins (shared, not copied), and the
+//! figures the presentation tests draw.
 #![allow(dead_code, missing_docs)]
 
-use design_sweep::{DesignPoint, Level, PointError};
+#[path = "../../../design-sweep/tests/common/mod.rs"]
+mod evaluators;
+pub use evaluators::*;
 
-/// A design point of the given ratio and restoring pressure.
-pub fn point(ratio: f64, restoring: f64) -> DesignPoint {
-    DesignPoint {
-        pull_out_ratio: ratio,
-        largest_pull_out_pa: ratio * restoring,
-        restoring_pressure_pa: restoring,
-        cycles_to_accommodation: Some(3),
-        first_sticking_cycle: (ratio > 1.0).then_some(1),
-        sticks: ratio > 1.0,
-        closes: true,
-        validity_holds: true,
-        accommodation_cause: None,
-        contact_resistance: None,
-        real_contact_fraction: None,
-    }
-}
-
-/// ratio = (x0 / x)^p: critical value x0, free above.
-pub fn power(x0: f64, p: f64) -> impl Fn(f64) -> Result<DesignPoint, PointError> + Sync {
-    move |x| Ok(point((x0 / x).powf(p), x))
-}
-
-/// The number of axis `k` of a numeric grid point.
-pub fn num(values: &[(&str, Level)], k: usize) -> f64 {
-    values[k].1.number().expect("a numeric axis")
-}
-
-/// 2-D: ratio = (x0/x)^2 * (y/y0): boundary y = y0 (x/x0)^2.
-pub fn product(values: &[(&str, Level)]) -> Result<DesignPoint, PointError> {
-    let (x, y) = (num(values, 0), num(values, 1));
-    Ok(point((2e3 / x).powi(2) * (y / 1e-8), x))
-}
-
-/// 1-D: ratio = (x0/x)^1.5 with a few failing points and one out of domain.
-pub fn flaky(values: &[(&str, Level)]) -> Result<DesignPoint, PointError> {
-    let x = num(values, 0);
-    if (x - 500.0).abs() < 1e-9 {
-        return Err(PointError::Failed("solver did not converge".into()));
-    }
-    if x < 150.0 {
-        return Err(PointError::OutOfDomain(format!(
-            "switch.k_s = {x} below 150"
-        )));
-    }
-    if (x - 900.0).abs() < 1e-9 {
-        panic!("a bug in the evaluator");
-    }
-    if x > 1800.0 {
-        return Ok(DesignPoint::does_not_close(x));
-    }
-    Ok(point((1e3 / x).powf(1.5), x))
-}
-
-/// The trimmed text of every `<text>` element of an SVG document.
-pub fn svg_texts<'a>(doc: &'a roxmltree::Document) -> Vec<&'a str> {
-    doc.descendants()
-        .filter(|n| n.has_tag_name("text"))
-        .filter_map(|n| n.text().map(str::trim))
-        .collect()
+/// P = 0.5 - 0.3 / n against cycle n = 1..=`cycles` (a count on the x axis), with its
+/// +-0.05 band as a shaded interval if `band`; the y range fixed to `y_range` if given.
+pub fn against_cycle(cycles: u32, band: bool, y_range: Option<(f64, f64)>) -> String {
+    use stiction_report::plot::{self, Band, Panel, Series};
+    let p: Vec<(f64, f64)> = (1..=cycles)
+        .map(|n| (f64::from(n), 0.5 - 0.3 / f64::from(n)))
+        .collect();
+    let bands = if band {
+        vec![Band {
+            name: "95 % interval".into(),
+            points: p.iter().map(|&(x, y)| (x, y - 0.05, y + 0.05)).collect(),
+            colour: None,
+        }]
+    } else {
+        Vec::new()
+    };
+    plot::svg(
+        "a band, a line, whole cycles",
+        &[Panel {
+            caption: "P with its interval".into(),
+            x_label: "cycle n [count]".into(),
+            y_label: "P [-]".into(),
+            series: vec![Series {
+                name: "P".into(),
+                points: p,
+                colour: None,
+            }],
+            bands,
+            x_range: Some((0.5, f64::from(cycles) + 0.5)),
+            y_range,
+            ..Default::default()
+        }],
+    )
+    .unwrap()
 }
