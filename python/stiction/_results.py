@@ -154,6 +154,8 @@ class Table:
             cells = [r.get(k) for r in rows]
             if all(isinstance(c, bool) for c in cells):
                 cols[k] = np.asarray(cells, dtype=bool)
+            elif all(isinstance(c, int) and not isinstance(c, bool) for c in cells):
+                cols[k] = np.asarray(cells, dtype=np.int64)
             elif all(isinstance(c, (int, float)) and not isinstance(c, bool) or c is None for c in cells):
                 cols[k] = np.asarray([np.nan if c is None else c for c in cells], dtype=float)
             else:
@@ -897,7 +899,9 @@ class DesignMap(Record):
         in ``attrs["units"]``), and the points' ``pull_out_ratio``, ``largest_pull_out_pa``,
         ``restoring_pressure_pa``, ``contact_resistance``, ``real_contact_fraction``
         (NaN where a point has none or a shard lacks it), ``sticks``, ``closes``,
-        ``validity_holds`` (NaN-able floats 1/0) and ``status`` (a word; "" where absent).
+        ``validity_holds`` (NaN-able floats 1/0), ``cycles_to_accommodation`` and
+        ``first_sticking_cycle`` (counts, NaN where none), ``status`` and
+        ``accommodation_cause`` (words; "" where absent): every column of map.csv.
         xarray is imported here (ImportError naming it when missing)."""
         xr = _xarray()
         axes = self.grid["axes"]
@@ -922,6 +926,8 @@ class DesignMap(Record):
             "sticks": "-",
             "closes": "-",
             "validity_holds": "-",
+            "cycles_to_accommodation": "count",
+            "first_sticking_cycle": "count",
         }
         data = {}
         for name, unit in numbers.items():
@@ -931,10 +937,11 @@ class DesignMap(Record):
                 if v is not None:
                     grid.flat[p.index] = float(v)
             data[name] = (dims, grid, {"units": unit})
-        status = np.full(shape, "", dtype=object)
-        for p in self.points:
-            status.flat[p.index] = p.status
-        data["status"] = (dims, status)
+        for name in ("status", "accommodation_cause"):
+            words = np.full(shape, "", dtype=object)
+            for p in self.points:
+                words.flat[p.index] = getattr(p, name) or ""
+            data[name] = (dims, words)
         return xr.Dataset(data, coords=coords, attrs={"accuracy": self.accuracy, "format": self.format})
 
 

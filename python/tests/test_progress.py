@@ -87,6 +87,17 @@ def test_the_stages_of_a_model_form_check_add_up(paper_switch):
     assert rec.calls[-1][1] > 10
 
 
+def test_a_design_question_counts_its_model_form_combinations_too(paper_switch):
+    # the combinations are a stage of their own, one step each: the total grows past the
+    # points (it stood at the points while the combinations ran, the fourteenth stop's QA)
+    scene = paper_switch.with_values({"model_form": "check"})
+    rec = Recorder()
+    m = stiction.design_map(scene, ["surface.sigma_s=2e-9:1e-7:log:3"], accuracy="fast", progress=rec)
+    rec.check()
+    assert m.model_form is not None
+    assert rec.calls[-1][0] == rec.calls[-1][1] > 3, rec.calls
+
+
 def test_a_map_reports_every_point(paper_switch):
     rec = Recorder()
     stiction.design_map(paper_switch, ["surface.sigma_s=2e-9:1e-7:log:4"], accuracy="fast", progress=rec)

@@ -120,6 +120,8 @@ def test_per_cycle_has_cycles_csv_columns_and_values(tmp_path, switch_run):
     assert df["hold_contact_resistance_ohm"].notna().any()
     assert switch_run.per_cycle.hold_contact_resistance.dtype == float
     assert list(df["cycle"]) == [int(r[0]) for r in body]
+    # whole numbers stay whole, as cycles.csv writes them
+    assert df["cycle"].dtype.kind == "i" and switch_run.per_cycle.cycle.dtype == np.int64
     # the plain table converts column for column
     t = switch_run.loading.to_pandas()
     assert list(t.columns) == switch_run.loading.columns and len(t) == len(switch_run.loading)
@@ -180,6 +182,10 @@ def test_a_map_saves_the_command_lines_files_and_converts_to_a_grid(cli, tmp_pat
         i, j = divmod(p.index, 2)
         assert ds["pull_out_ratio"].values[i, j] == p.pull_out_ratio
         assert ds["status"].values[i, j] == p.status
+    # every column of map.csv is a variable (or a coordinate)
+    header = expected["map.csv"].decode().splitlines()[0].split(",")
+    assert set(header) <= set(ds.variables), set(header) - set(ds.variables)
+    assert ds["cycles_to_accommodation"].attrs["units"] == "count"
 
 
 def test_a_map_over_words_has_the_words_as_coordinate(spring):

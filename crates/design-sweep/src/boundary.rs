@@ -12,21 +12,32 @@ use std::collections::HashMap;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BoundaryPoint {
     /// Estimated critical value: log10 ratio interpolated linearly in the plotted
-    /// coordinate (log10 of the value on a log axis); the midpoint next to a point that
-    /// does not close.
+    /// coordinate (log10 of the value on a log axis); the midpoint next to a point of
+    /// ratio 0.
     pub value: f64,
     /// The side (of increasing value) where the ratio is below 1.
     pub free_side: FreeSide,
     /// The two grid values the crossing lies between, ascending.
     pub between: [f64; 2],
-    /// `jump` next to a point that does not close (ratio 0), else `continuous` (a grid
-    /// cannot tell a steep crossing from a jump: use a threshold search for that).
+    /// `jump` next to a closing point of ratio 0, else `continuous` (a grid cannot tell a
+    /// steep crossing from a jump: use a threshold search for that). Between a point that
+    /// does not close and one that does there is no crossing: that is a closure boundary,
+    /// and the stiction boundary may lie at it or beyond it, which the grid cannot tell.
     pub kind: CrossingKind,
 }
 
 /// log10 of the ratio of grid point `i`: `-inf` for ratio 0, `None` if absent or failed.
 fn level(map: &Map, i: usize) -> Option<f64> {
     map.point(i).and_then(|p| p.ratio()).map(f64::log10)
+}
+
+/// [`level`] along one numeric axis: NaN where the switch does not close (no stiction
+/// boundary runs through it or ends on it).
+fn level_along(map: &Map, i: usize) -> Option<f64> {
+    match map.point(i)?.status {
+        crate::point::Status::DoesNotClose => Some(f64::NAN),
+        _ => level(map, i),
+    }
 }
 
 /// Fraction along a -> b where the level crosses 0 (midpoint if either end is infinite).
@@ -53,7 +64,8 @@ pub struct WordBoundary {
 impl Map {
     /// The crossings of ratio = 1 of a 1-D numeric map, ascending value (empty for a 2-D
     /// map, and for a categorical axis: its words have no order to cross along). Failed
-    /// points are skipped: a crossing may then span them.
+    /// points are skipped: a crossing may then span them. A point that does not close
+    /// ends the stretch: no crossing spans it or ends on it.
     pub fn boundary_1d(&self) -> Vec<BoundaryPoint> {
         if self.grid().dim() != 1 || self.grid().has_categorical() {
             return Vec::new();
@@ -61,7 +73,7 @@ impl Map {
         let axis = &self.grid().axes()[0];
         crossings(
             axis,
-            (0..axis.n).filter_map(|i| level(self, i).map(|l| (axis.values[i], l))),
+            (0..axis.n).filter_map(|i| level_along(self, i).map(|l| (axis.values[i], l))),
         )
     }
 
@@ -88,7 +100,7 @@ impl Map {
                     let mut idx = [0; 2];
                     idx[c] = w;
                     idx[x] = j;
-                    level(self, g.index(&idx)).map(|l| (num.values[j], l))
+                    level_along(self, g.index(&idx)).map(|l| (num.values[j], l))
                 });
                 WordBoundary {
                     field: cat.field.clone(),
@@ -106,6 +118,7 @@ fn crossings(axis: &Axis, known: impl Iterator<Item = (f64, f64)>) -> Vec<Bounda
     let known: Vec<(f64, f64)> = known.collect();
     let mut out: Vec<BoundaryPoint> = known
         .windows(2)
+        .filter(|w| !w[0].1.is_nan() && !w[1].1.is_nan())
         .filter(|w| (w[0].1 < 0.0) != (w[1].1 < 0.0))
         .map(|w| {
             let ((xa, la), (xb, lb)) = (w[0], w[1]);

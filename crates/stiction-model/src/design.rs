@@ -671,7 +671,7 @@ pub fn threshold_with(
     let model_form = spec.model_form.check.then(|| {
         use crate::model_form::{check_accuracy, each_form, ThresholdFormRun, ThresholdModelForm};
         let mode = check_accuracy(accuracy);
-        let (_, ran, excluded) = each_form(&spec, registry, scene, |s| {
+        let (_, ran, excluded) = each_form(&spec, registry, scene, progress, |s| {
             threshold_with(
                 s,
                 registry,
@@ -827,7 +827,7 @@ pub fn map_with(
     let model_form = spec.model_form.check.then(|| {
         use crate::model_form::{check_accuracy, each_form, MapModelForm};
         let mode = check_accuracy(spec.common.accuracy);
-        let (_, ran, excluded) = each_form(&spec, registry, scene, |s| {
+        let (_, ran, excluded) = each_form(&spec, registry, scene, progress, |s| {
             map_with(
                 s,
                 registry,

@@ -612,17 +612,24 @@ fn ratio_words(r: f64) -> String {
 /// Runs `question` under every combination but the scene's own (in order, each one's
 /// points in parallel inside it), with the combination's scene; a combination that the
 /// scene keys refuse or that fails is left out with the reason. The scene's own form first
-/// in the forms returned, then those that ran.
+/// in the forms returned, then those that ran. `progress` sees a stage of its own, one
+/// step a combination (the question's runs should report to it only their stop, as
+/// [`crate::CancelOnly`]).
 pub fn each_form<T>(
     spec: &SwitchSpec,
     registry: &LawRegistry,
     scene: &Scene,
+    progress: &dyn crate::Progress,
     mut question: impl FnMut(&Scene) -> Result<T, ModelError>,
 ) -> (Forms, Vec<(Form, T)>, Vec<Excluded>) {
     let forms = Forms::of(spec, registry);
     let mut excluded = forms.excluded.clone();
     let mut ran = Vec::new();
-    for form in forms.forms.iter().skip(1) {
+    progress.start(
+        forms.forms.len().saturating_sub(1) as u64,
+        "model-form combinations",
+    );
+    for (k, form) in forms.forms.iter().skip(1).enumerate() {
         match form.apply(scene).and_then(|s| question(&s)) {
             Ok(t) => ran.push((form.clone(), t)),
             Err(e) => excluded.push(Excluded {
@@ -631,7 +638,9 @@ pub fn each_form<T>(
                 reason: e.without_file(),
             }),
         }
+        progress.set(k as u64 + 1);
     }
+    progress.finish();
     (forms, ran, excluded)
 }
 

@@ -405,7 +405,7 @@ fn model_form_check(
         exact: false,
         ..request.clone()
     };
-    let (_, ran, excluded) = each_form(&spec, registry, scene, |s| {
+    let (_, ran, excluded) = each_form(&spec, registry, scene, progress, |s| {
         run(s, registry, &alternative, &crate::CancelOnly(progress))
     });
     crate::check_cancelled(progress)?;

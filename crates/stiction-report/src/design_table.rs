@@ -29,6 +29,57 @@ fn with_unit(x: f64, digits: usize, unit: Option<&str>) -> String {
     }
 }
 
+/// Where the switch stops closing between neighbouring points `along` one numeric axis
+/// ((value, point), in the axis's order): a design boundary of its own, which bounds a free
+/// side that reaches it (never "free" beyond it), with what the switch does where it first
+/// closes: if it sticks there, the stiction boundary lies at the closure or between it and
+/// that point, which the grid cannot tell.
+fn closure_rows(s: &mut String, along: &[(f64, &MapPoint)], unit: Option<&str>, prefix: &str) {
+    let row = |s: &mut String, k: &str, v: String| {
+        let _ = writeln!(s, "{k:<16}{v}");
+    };
+    let closes = |p: &MapPoint| match p.status {
+        Status::Ok => Some(true),
+        Status::DoesNotClose => Some(false),
+        _ => None,
+    };
+    for w in along.windows(2) {
+        let ((x0, p0), (x1, p1)) = (w[0], w[1]);
+        let (Some(c0), Some(c1)) = (closes(p0), closes(p1)) else {
+            continue;
+        };
+        if c0 == c1 {
+            continue;
+        }
+        let (lo, hi) = (x0.min(x1), x0.max(x1));
+        let side = if c0 == (x0 < x1) { "below" } else { "above" };
+        let (x_closed, closed) = if c0 { (x0, p0) } else { (x1, p1) };
+        let there = match closed.ratio() {
+            Some(r) if r >= 1.0 => format!(
+                "; at {}, where it closes, it sticks (ratio {}): the stiction boundary is at the closure or between it and {}",
+                with_unit(x_closed, 6, unit),
+                fmt_sig(r, 4),
+                with_unit(x_closed, 6, unit)
+            ),
+            Some(r) => format!(
+                "; at {}, where it closes, it is free (ratio {})",
+                with_unit(x_closed, 6, unit),
+                fmt_sig(r, 4)
+            ),
+            None => String::new(),
+        };
+        row(
+            s,
+            "closure",
+            format!(
+                "{prefix}the switch stops closing between {} and {} (it closes {side}){there}; a closure boundary, not a stiction boundary: `design threshold` locates both",
+                with_unit(lo, 6, unit),
+                with_unit(hi, 6, unit)
+            ),
+        );
+    }
+}
+
 fn ratio_word(r: Option<f64>) -> String {
     match r {
         Some(0.0) => "0 (does not close)".into(),
@@ -365,32 +416,8 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
         for p in b {
             row(&mut s, "boundary", crossing_text(&a.field, unit, &p));
         }
-        // where the switch stops closing between neighbouring points: a design boundary of
-        // its own, which bounds a free side that reaches it (never "free" beyond it)
-        let points = map.points();
-        for w in points.windows(2) {
-            let closes = |p: &MapPoint| match p.status {
-                Status::Ok => Some(true),
-                Status::DoesNotClose => Some(false),
-                _ => None,
-            };
-            if let (Some(c0), Some(c1)) = (closes(&w[0]), closes(&w[1])) {
-                if c0 != c1 && w[1].index == w[0].index + 1 {
-                    let (x0, x1) = (w[0].values[0], w[1].values[0]);
-                    let (lo, hi) = (x0.min(x1), x0.max(x1));
-                    let side = if c0 == (x0 < x1) { "below" } else { "above" };
-                    row(
-                        &mut s,
-                        "closure",
-                        format!(
-                            "the switch stops closing between {} and {} (it closes {side}): a closure boundary, not a stiction boundary; `design threshold` locates it",
-                            with_unit(lo, 6, unit),
-                            with_unit(hi, 6, unit)
-                        ),
-                    );
-                }
-            }
-        }
+        let along: Vec<(f64, &MapPoint)> = map.points().iter().map(|p| (p.values[0], p)).collect();
+        closure_rows(&mut s, &along, unit, "");
     } else if g.has_categorical() {
         let by_word = map.boundary_by_word();
         if by_word.is_empty() {
@@ -400,12 +427,9 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
                 "none drawn: both axes are categorical (each point's ratio in map.csv)".into(),
             );
         }
-        for b in by_word {
-            let num = g
-                .axes()
-                .iter()
-                .find(|a| !a.is_categorical())
-                .expect("a numeric axis beside the categorical one");
+        let c = usize::from(!g.axes()[0].is_categorical());
+        for (w, b) in by_word.into_iter().enumerate() {
+            let num = &g.axes()[1 - c];
             let unit = labels.unit(&num.field);
             let at_word = format!("{} = {}", b.field, b.word);
             if b.crossings.is_empty() {
@@ -419,6 +443,15 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
                 let text = crossing_text(&num.field, unit, &p);
                 row(&mut s, "boundary", format!("{at_word}: {text}"));
             }
+            let along: Vec<(f64, &MapPoint)> = (0..num.n)
+                .filter_map(|j| {
+                    let mut idx = [0; 2];
+                    idx[c] = w;
+                    idx[1 - c] = j;
+                    map.point(g.index(&idx)).map(|p| (num.values[j], p))
+                })
+                .collect();
+            closure_rows(&mut s, &along, unit, &format!("{at_word}: "));
         }
     } else {
         let lines = map.boundary_2d();
@@ -442,7 +475,11 @@ pub fn map_table(map: &Map, labels: &Labels) -> String {
         .filter(|p| p.status.detail().is_some())
         .collect();
     if !failed.is_empty() {
-        let _ = writeln!(s, "\nfailed points ({}):", failed.len());
+        let _ = writeln!(
+            s,
+            "\npoints not run: out of domain or failed ({}):",
+            failed.len()
+        );
         for p in failed.iter().take(LISTED_FAILURES) {
             let _ = writeln!(
                 s,

@@ -418,7 +418,7 @@ impl OutputSet {
             Node::Regular(_) => Err(refuse(dir, "it is a file, not a folder")),
             Node::Stream(_) => Err(refuse(
                 dir,
-                "it is a stream or device, not a folder: give a folder for --out",
+                "it is a stream or device, not a folder: give a folder (--out, or the folder of save())",
             )),
             Node::Other(what) => Err(refuse(dir, format!("it is {what}, not a folder"))),
         }

@@ -331,7 +331,7 @@ fn contact_panels(r: &SwitchResult) -> Vec<Panel> {
             area.push(Series {
                 name: "A_r = A (100 %): above is impossible".into(),
                 points: vec![(0.5, 100.0), (last + 0.5, 100.0)],
-                colour: Some(plot::STICK),
+                colour: Some(plot::REFERENCE),
             });
         }
         out.push(Panel {

@@ -281,6 +281,9 @@ fn plot_svg(r: &TopographyReport) -> Result<String, String> {
             .x_desc("x [um]")
             .y_desc("y [um]")
             .x_labels(4)
+            .y_labels(((px * h / 40.0) as usize).clamp(2, 8))
+            .label_style(("sans-serif", 12))
+            .axis_desc_style(("sans-serif", 14))
             .draw()
             .map_err(|x| e(&x))?;
         c.draw_series((0..m.ny).flat_map(|j| {
@@ -298,9 +301,14 @@ fn plot_svg(r: &TopographyReport) -> Result<String, String> {
         .map_err(|x| e(&x))?;
         // the colour bar: height in nm
         let (z0, z1) = (zmin * 1e9, zmin * 1e9 + span * 1e9);
+        // as tall as the map (at least 120 px), level with it
+        let title = 420u32.saturating_sub(ah);
+        let (top, bottom) = (title + pad + extra_h, pad + extra_h + label_x);
+        let spare = 420u32.saturating_sub(top + bottom);
+        let grow = 120u32.saturating_sub(spare) / 2;
         let mut bar = ChartBuilder::on(&bar_area)
-            .margin_top(40)
-            .margin_bottom(45)
+            .margin_top(top.saturating_sub(grow))
+            .margin_bottom(bottom.saturating_sub(grow))
             .margin_right(8)
             .x_label_area_size(0)
             .y_label_area_size(60)
@@ -311,6 +319,8 @@ fn plot_svg(r: &TopographyReport) -> Result<String, String> {
             .disable_x_axis()
             .y_desc("height [nm]")
             .y_labels(6)
+            .label_style(("sans-serif", 12))
+            .axis_desc_style(("sans-serif", 14))
             .draw()
             .map_err(|x| e(&x))?;
         let steps = 64;

@@ -176,3 +176,83 @@ fn a_1d_map_names_where_the_switch_stops_closing() {
         );
     }
 }
+
+/// A switch that sticks where it first closes (the user's case of the fourteenth stop:
+/// the table put a "jump" stiction boundary at the midpoint between a point that does not
+/// close and a sticking one, where a threshold search found the switch closing at 48.2 V
+/// and free up to 51.3 V): no stiction boundary is claimed there; the closure row says
+/// that the switch sticks where it closes and that the boundary lies at the closure or
+/// beyond it. Over words too, each word with its own closure row.
+#[test]
+fn no_stiction_boundary_is_claimed_next_to_a_point_that_does_not_close() {
+    // closes above 45 V; ratio x / 40 (free below 40 V: never, where it closes)
+    let eval = |v: &[(&str, Level<'_>)]| -> Result<DesignPoint, PointError> {
+        let x = v
+            .iter()
+            .find_map(|(f, l)| (*f == "switch.voltage").then(|| l.number()).flatten())
+            .expect("the voltage");
+        if x < 45.0 {
+            Ok(DesignPoint::does_not_close(1.0))
+        } else {
+            Ok(common::point(x / 40.0, 1.0))
+        }
+    };
+    let labels = Labels::new().with_unit("switch.voltage", "V");
+    let m = run_map(
+        request(&["switch.voltage=40:60:lin:11"], None),
+        eval,
+        |_, _| {},
+    );
+    assert!(m.boundary_1d().is_empty(), "{:?}", m.boundary_1d());
+    let t = map_table(&m, &labels);
+    assert!(!t.contains("jump"), "{t}");
+    let closure: Vec<&str> = t.lines().filter(|l| l.starts_with("closure")).collect();
+    assert_eq!(closure.len(), 1, "{t}");
+    assert!(
+        closure[0].contains("at 46 V, where it closes, it sticks (ratio 1.15)")
+            && closure[0].contains("at the closure or between it and 46 V"),
+        "{t}"
+    );
+    // a crossing among closing points is still found, and a free point at closure said so
+    let m = run_map(
+        request(&["switch.voltage=40:60:lin:11"], None),
+        |v: &[(&str, Level<'_>)]| -> Result<DesignPoint, PointError> {
+            let x = v[0].1.number().unwrap();
+            if x < 45.0 {
+                Ok(DesignPoint::does_not_close(1.0))
+            } else {
+                Ok(common::point(x / 50.0, 1.0))
+            }
+        },
+        |_, _| {},
+    );
+    let b = m.boundary_1d();
+    assert_eq!(b.len(), 1);
+    assert!(
+        b[0].between == [48.0, 50.0] || b[0].between == [50.0, 52.0],
+        "{b:?}"
+    );
+    assert!(map_table(&m, &labels).contains("where it closes, it is free (ratio 0.92)"));
+    // over words: each word has its closure row
+    let m = run_map(
+        request(
+            &[
+                "contact.plasticity_law=etsion_kadin,kogut_etsion",
+                "switch.voltage=40:60:lin:11",
+            ],
+            None,
+        ),
+        eval,
+        |_, _| {},
+    );
+    let t = map_table(&m, &labels);
+    let closure: Vec<&str> = t.lines().filter(|l| l.starts_with("closure")).collect();
+    assert_eq!(closure.len(), 2, "{t}");
+    assert!(
+        closure[0].contains(
+            "contact.plasticity_law = etsion_kadin: the switch stops closing between 44 V and 46 V"
+        ),
+        "{t}"
+    );
+    assert!(!t.contains("jump"), "{t}");
+}

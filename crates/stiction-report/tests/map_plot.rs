@@ -142,7 +142,10 @@ fn failed_and_non_closing_points_are_drawn_not_dropped() {
     roxmltree::Document::parse(&svg2).unwrap();
     assert!(svg2.contains("x: failed or out of domain") && svg2.contains("grey: does not close"));
     let table = map_table(&map, &labels());
-    assert!(table.contains("failed points (3)"), "{table}");
+    assert!(
+        table.contains("points not run: out of domain or failed (3)"),
+        "{table}"
+    );
     assert!(table.contains("boundary        switch.k_s ~ "), "{table}");
 }
 

@@ -75,7 +75,7 @@ fn each_cycle_has_one_colour_in_both_pressure_panels() {
     let svg = r.svg().unwrap();
     let d = doc(&svg);
     // a legend's texts come first, then its sample lines (20 px, 2 points), each 30 px
-    // left of its text and 5 px under the text's top
+    // left of its text and within a line of the text's baseline
     let samples: Vec<(f64, f64, String)> = d
         .descendants()
         .filter(|n| n.has_tag_name("polyline"))
@@ -91,11 +91,11 @@ fn each_cycle_has_one_colour_in_both_pressure_panels() {
         })
         .collect();
     let mut seen: BTreeMap<String, Vec<String>> = BTreeMap::new();
-    for (t, x, y, ..) in texts(&svg) {
+    for (t, x, y, size, _) in texts(&svg) {
         if t.starts_with("unloading, cycle") {
             let sample = samples
                 .iter()
-                .find(|s| s.0 == x - 30.0 && (s.1 - (y + 5.0)).abs() <= 3.0)
+                .find(|s| s.0 == x - 30.0 && (s.1 - y).abs() <= 0.5 * size)
                 .unwrap_or_else(|| panic!("no legend line for {t:?}"));
             seen.entry(t).or_default().push(sample.2.clone());
         }
@@ -454,5 +454,98 @@ fn a_height_map_is_drawn_at_its_true_aspect_with_a_colour_bar() {
         );
         assert!(bar >= 32, "{nx} x {ny}: a colour bar of {bar} steps");
         assert!(svg.contains("height [nm]"), "the colour bar's unit");
+    }
+}
+
+/// The legend box (the black-bordered rectangle) of a one-panel figure: (x0, y0, x1, y1).
+fn legend_box(svg: &str) -> (f64, f64, f64, f64) {
+    let d = doc(svg);
+    let r = d
+        .descendants()
+        .filter(|n| n.has_tag_name("rect"))
+        .find(|n| n.attribute("fill") == Some("none") && n.attribute("stroke") == Some("#000000"))
+        .expect("a legend box");
+    let (x, y) = (num(r, "x"), num(r, "y"));
+    (x, y, x + num(r, "width"), y + num(r, "height"))
+}
+
+/// Every point along the data's polylines (stroke width 2, more than 2 points), every px.
+fn data_pixels(svg: &str) -> Vec<(f64, f64)> {
+    let d = doc(svg);
+    let mut out = Vec::new();
+    for n in d.descendants().filter(|n| n.has_tag_name("polyline")) {
+        let p: Vec<f64> = n
+            .attribute("points")
+            .unwrap_or("")
+            .split([' ', ','])
+            .filter(|t| !t.is_empty())
+            .map(|t| t.parse().unwrap())
+            .collect();
+        if n.attribute("stroke-width") != Some("2") || p.len() < 6 {
+            continue;
+        }
+        for w in p.chunks(2).collect::<Vec<_>>().windows(2) {
+            let (a, b) = ((w[0][0], w[0][1]), (w[1][0], w[1][1]));
+            let n = (a.0 - b.0).abs().max((a.1 - b.1).abs()).ceil().max(1.0) as usize;
+            out.extend((0..=n).map(|k| {
+                let t = k as f64 / n as f64;
+                (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+            }));
+        }
+    }
+    out
+}
+
+#[test]
+fn the_legend_sits_where_it_hides_no_data() {
+    // a falling line (upper left to lower right) and a rising one: only the upper right
+    // and lower left corners are free; a line along the bottom leaves the top free
+    let line = |pts: Vec<(f64, f64)>, name: &str| Series {
+        name: name.into(),
+        points: pts,
+        colour: None,
+    };
+    let xs: Vec<f64> = (0..=50).map(|k| f64::from(k) / 50.0).collect();
+    for (case, series) in [
+        (
+            "falling",
+            vec![line(
+                xs.iter().map(|&x| (x, 1.0 - x)).collect(),
+                "falling line",
+            )],
+        ),
+        (
+            "along the bottom",
+            vec![
+                line(xs.iter().map(|&x| (x, 0.02 * x)).collect(), "low line"),
+                line(
+                    xs.iter().map(|&x| (x, 1.0 - 0.02 * x)).collect(),
+                    "high line",
+                ),
+                line(xs.iter().map(|&x| (x, 0.5)).collect(), "middle line"),
+            ],
+        ),
+    ] {
+        let svg = plot::svg(
+            case,
+            &[Panel {
+                x_label: "x [-]".into(),
+                y_label: "y [-]".into(),
+                series,
+                x_range: Some((0.0, 1.0)),
+                y_range: Some((0.0, 1.0)),
+                ..Default::default()
+            }],
+        )
+        .unwrap();
+        let (x0, y0, x1, y1) = legend_box(&svg);
+        let hidden = data_pixels(&svg)
+            .into_iter()
+            .filter(|p| (x0..=x1).contains(&p.0) && (y0..=y1).contains(&p.1))
+            .count();
+        assert_eq!(
+            hidden, 0,
+            "{case}: the legend ({x0}, {y0})-({x1}, {y1}) hides {hidden} px of data"
+        );
     }
 }

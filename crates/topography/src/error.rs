@@ -47,7 +47,7 @@ pub enum TopographyError {
         message: String,
     },
     /// The file gives no grid spacing (or no physical size) and none was given in the options.
-    #[error("{path}: {format} file gives no {what}; give it on the command line (--spacing METRES) or in the file")]
+    #[error("{path}: {format} file gives no {what}; give it as an option (--spacing METRES; in Python spacing=) or in the file")]
     MissingSpacing {
         /// The file.
         path: PathBuf,
@@ -57,7 +57,7 @@ pub enum TopographyError {
         what: &'static str,
     },
     /// The file gives no unit for the heights and none was given in the options.
-    #[error("{path}: {format} file gives no unit for the {what}; give it on the command line (--height-unit UNIT) or in the header (# height_unit = nm)")]
+    #[error("{path}: {format} file gives no unit for the {what}; give it as an option (--height-unit UNIT; in Python height_unit=) or in the header (# height_unit = nm)")]
     MissingUnit {
         /// The file.
         path: PathBuf,

@@ -4,7 +4,7 @@
 //! code 0, 1, ... of a word on a categorical axis) with our own tick marks, so every axis
 //! type is one chart type.
 
-use super::{FREE, NO_CLOSE, SERIES, STICK};
+use super::{FREE, NO_CLOSE, REFERENCE, SERIES, STICK};
 use crate::ReportError;
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::prelude::*;
@@ -494,10 +494,15 @@ fn ratio_frame<'a, 'b>(
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(plot_err)?;
-    let boundary = STICK.stroke_width(2);
+    let boundary = REFERENCE.stroke_width(2);
     let one = if log_y { 0.0 } else { 1.0 };
     chart
-        .draw_series(LineSeries::new([(xs.lo, one), (xs.hi, one)], boundary))
+        .draw_series(DashedLineSeries::new(
+            [(xs.lo, one), (xs.hi, one)],
+            8,
+            5,
+            boundary,
+        ))
         .map_err(plot_err)?
         .label(boundary_label)
         .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], boundary));

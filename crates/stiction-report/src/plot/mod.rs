@@ -78,6 +78,9 @@ pub const STICK: RGBColor = RGBColor(178, 24, 43);
 pub const FREE: RGBColor = RGBColor(33, 102, 172);
 /// A design point that does not close.
 pub const NO_CLOSE: RGBColor = RGBColor(190, 190, 190);
+/// A reference line (a map's ratio = 1, the 100 % of a contact area): dark grey and
+/// dashed wherever it is drawn, so that no data series' colour can be taken for it.
+pub const REFERENCE: RGBColor = RGBColor(80, 80, 80);
 
 /// The parts of the polyline inside [x0, x1] x [y0, y1], each segment clipped at the
 /// border (Liang-Barsky).
@@ -163,14 +166,40 @@ fn data_range(panel: &Panel, axis: usize) -> (f64, f64) {
         (a.min(v), b.max(v))
     });
     if !(lo < hi) {
+        // one value: a tenth of it either side (a count or a zero: one either side)
         let c = if lo.is_finite() { lo } else { 0.0 };
-        return (c - 1.0, c + 1.0);
+        let counted = if axis == 0 {
+            panel.x_label.starts_with("cycle")
+        } else {
+            panel.y_label.contains("[count]")
+        };
+        let pad = if counted || c == 0.0 {
+            1.0
+        } else {
+            0.1 * c.abs()
+        };
+        return (c - pad, c + pad);
     }
     if axis == 1 {
         let pad = 0.05 * (hi - lo);
         (lo - pad, hi + pad)
     } else {
         (lo, hi)
+    }
+}
+
+/// A tick label as plotters writes it (up to 5 decimals), without the sign of a zero
+/// ("-0.0" where rounding left a tick a hair below zero).
+fn tick(v: &f64) -> String {
+    let s = plotters::data::float::FloatPrettyPrinter {
+        allow_scientific: false,
+        min_decimal: 1,
+        max_decimal: 5,
+    }
+    .print(*v);
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_owned(),
+        _ => s,
     }
 }
 
@@ -293,23 +322,35 @@ fn draw_panel(area: &Area<'_>, panel: &Panel) -> Result<(), String> {
         .y_label_area_size(80)
         .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
         .map_err(|x| e(&x))?;
-    // a count on the x axis (cycles) is labelled at whole numbers only
+    // a count (cycles on x, "[count]" on y) is labelled at whole numbers only
     let counted = panel.x_label.starts_with("cycle");
-    let step = whole_step(xr.1 - xr.0);
-    let whole = |x: &f64| {
-        let k = (x / step).round();
-        if (x - k * step).abs() < 1e-9 * step.max(1.0) {
-            format!("{:.0}", k * step)
-        } else {
-            String::new()
+    let y_counted = panel.y_label.contains("[count]");
+    let whole = |step: f64| {
+        move |x: &f64| {
+            let k = (x / step).round();
+            if (x - k * step).abs() < 1e-9 * step.max(1.0) {
+                format!("{:.0}", k * step)
+            } else {
+                String::new()
+            }
         }
     };
+    let (x_step, y_step) = (whole_step(xr.1 - xr.0), whole_step(yr.1 - yr.0));
+    let (x_whole, y_whole) = (whole(x_step), whole(y_step));
     let mut mesh = chart.configure_mesh();
-    mesh.x_desc(&panel.x_label).y_desc(&panel.y_label);
+    mesh.x_desc(&panel.x_label)
+        .y_desc(&panel.y_label)
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick);
+    // enough key points that plotters' own choice lands on every whole step
+    let keys = |span: f64, step: f64| ((span / step).ceil() as usize * 2 + 1).min(41);
     if counted {
-        // enough key points that plotters' own choice lands on every whole step
-        let n = (((xr.1 - xr.0) / step).ceil() as usize * 2 + 1).min(41);
-        mesh.x_labels(n).x_label_formatter(&whole);
+        mesh.x_labels(keys(xr.1 - xr.0, x_step))
+            .x_label_formatter(&x_whole);
+    }
+    if y_counted {
+        mesh.y_labels(keys(yr.1 - yr.0, y_step))
+            .y_label_formatter(&y_whole);
     }
     mesh.draw().map_err(|x| e(&x))?;
     for band in &panel.bands {
@@ -340,25 +381,131 @@ fn draw_panel(area: &Area<'_>, panel: &Panel) -> Result<(), String> {
     for (i, s) in panel.series.iter().enumerate() {
         let c = s.colour.unwrap_or(SERIES[i % SERIES.len()]);
         let runs = clip(&s.points, xr, yr);
-        for (k, run) in runs.iter().enumerate() {
-            let drawn = chart
-                .draw_series(LineSeries::new(run.iter().copied(), c.stroke_width(2)))
-                .map_err(|x| e(&x))?;
-            if k == 0 {
+        let mut labelled = false;
+        for run in runs.iter().filter(|r| r.len() > 1) {
+            let drawn = if c == REFERENCE {
+                chart.draw_series(DashedLineSeries::new(
+                    run.iter().copied(),
+                    8,
+                    5,
+                    c.stroke_width(2),
+                ))
+            } else {
+                chart.draw_series(LineSeries::new(run.iter().copied(), c.stroke_width(2)))
+            }
+            .map_err(|x| e(&x))?;
+            if !labelled {
+                labelled = true;
                 drawn.label(s.name.clone()).legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
                 });
             }
         }
+        // a value per cycle is marked at each cycle, and a lone point is drawn at all
+        let inside = |p: &&(f64, f64)| {
+            p.0.is_finite()
+                && p.1.is_finite()
+                && (xr.0..=xr.1).contains(&p.0)
+                && (yr.0..=yr.1).contains(&p.1)
+        };
+        let marks: Vec<(f64, f64)> = s.points.iter().filter(inside).copied().collect();
+        if (counted || s.points.len() == 1) && !marks.is_empty() {
+            let drawn = chart
+                .draw_series(marks.iter().map(|&p| Circle::new(p, 3, c.filled())))
+                .map_err(|x| e(&x))?;
+            if !labelled {
+                drawn
+                    .label(s.name.clone())
+                    .legend(move |(x, y)| Circle::new((x + 10, y), 3, c.filled()));
+            }
+        }
     }
+    // the legend in the corner where it hides the least of the data
+    let (xs, ys) = chart.plotting_area().get_pixel_range();
+    let pixels: Vec<(i32, i32)> = panel
+        .series
+        .iter()
+        .flat_map(|s| clip(&s.points, xr, yr))
+        .chain(panel.bands.iter().flat_map(|b| {
+            let lo: Vec<(f64, f64)> = b.points.iter().map(|p| (p.0, p.1)).collect();
+            let hi: Vec<(f64, f64)> = b.points.iter().map(|p| (p.0, p.2)).collect();
+            [clip(&lo, xr, yr), clip(&hi, xr, yr)].concat()
+        }))
+        .flat_map(|run| {
+            let px: Vec<(i32, i32)> = run.iter().map(|p| chart.backend_coord(p)).collect();
+            sample_pixels(&px)
+        })
+        .collect();
+    let names = panel
+        .series
+        .iter()
+        .map(|s| s.name.as_str())
+        .chain(panel.bands.iter().map(|b| b.name.as_str()));
+    let (rows, longest) = names.fold((0usize, 0usize), |(n, w), name| {
+        (n + 1, w.max(name.chars().count()))
+    });
+    let size = (
+        (longest as f64 * CHAR_WIDTH * LEGEND_FONT + 45.0) as i32,
+        (rows as f64 * 15.0 + 12.0) as i32,
+    );
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
-        .position(SeriesLabelPosition::LowerRight)
+        .position(legend_corner((xs, ys), size, &pixels))
         .draw()
         .map_err(|x| e(&x))?;
     Ok(())
+}
+
+/// The legend's font size in the SVG (plotters' default label font, 12 pt).
+const LEGEND_FONT: f64 = 9.7;
+
+/// Points every 4 pixels along a polyline given in pixels (its corners included).
+fn sample_pixels(px: &[(i32, i32)]) -> Vec<(i32, i32)> {
+    let mut out: Vec<(i32, i32)> = px.first().copied().into_iter().collect();
+    for w in px.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let n = ((b.0 - a.0).abs().max((b.1 - a.1).abs()) / 4).max(1);
+        for k in 1..=n {
+            let t = f64::from(k) / f64::from(n);
+            out.push((
+                a.0 + (t * f64::from(b.0 - a.0)).round() as i32,
+                a.1 + (t * f64::from(b.1 - a.1)).round() as i32,
+            ));
+        }
+    }
+    out
+}
+
+/// The corner of the plotting area (`x` and `y` pixel ranges) where a legend of `size`
+/// pixels covers the fewest of `pixels` (the data drawn), lower right on a tie.
+fn legend_corner(
+    (x, y): (std::ops::Range<i32>, std::ops::Range<i32>),
+    size: (i32, i32),
+    pixels: &[(i32, i32)],
+) -> SeriesLabelPosition {
+    // plotters puts the box 5 px from the area's edges; counted with 2 px to spare
+    let (margin, pad) = (5, 2);
+    let size = (size.0 + 2 * pad, size.1 + 2 * pad);
+    let (left, right) = (x.start + margin - pad, x.end - margin - size.0 + pad);
+    let (top, bottom) = (y.start + margin - pad, y.end - margin - size.1 + pad);
+    [
+        (SeriesLabelPosition::LowerRight, right, bottom),
+        (SeriesLabelPosition::UpperRight, right, top),
+        (SeriesLabelPosition::UpperLeft, left, top),
+        (SeriesLabelPosition::LowerLeft, left, bottom),
+    ]
+    .into_iter()
+    .map(|(pos, x0, y0)| {
+        let hidden = pixels
+            .iter()
+            .filter(|p| (x0..=x0 + size.0).contains(&p.0) && (y0..=y0 + size.1).contains(&p.1))
+            .count();
+        (hidden, pos)
+    })
+    .min_by_key(|(hidden, _)| *hidden)
+    .map_or(SeriesLabelPosition::LowerRight, |(_, pos)| pos)
 }
 
 #[cfg(test)]
@@ -375,6 +522,42 @@ mod tests {
         }
         assert_eq!(lines.join(" "), text);
         assert_eq!(wrap("short", 300.0, 18.0), vec!["short".to_owned()]);
+    }
+
+    #[test]
+    fn a_zero_tick_has_no_sign() {
+        assert_eq!(tick(&-1e-17), "0.0");
+        assert_eq!(tick(&-0.0), "0.0");
+        assert_eq!(tick(&-0.5), "-0.5");
+        assert_eq!(tick(&2.0), "2.0");
+    }
+
+    #[test]
+    fn one_value_is_padded_by_a_tenth_or_a_whole_count() {
+        let panel = |x: &str, y: &str, v: f64| Panel {
+            x_label: x.into(),
+            y_label: y.into(),
+            series: vec![Series {
+                name: "s".into(),
+                points: vec![(1.0, v)],
+                colour: None,
+            }],
+            ..Default::default()
+        };
+        let r = data_range(&panel("cycle [count]", "E [J/m^2]", 6.5e-3), 1);
+        assert!((r.0 - 5.85e-3).abs() < 1e-15 && (r.1 - 7.15e-3).abs() < 1e-15);
+        assert_eq!(
+            data_range(&panel("cycle [count]", "bounces [count]", 4.0), 1),
+            (3.0, 5.0)
+        );
+        assert_eq!(
+            data_range(&panel("cycle [count]", "E [J/m^2]", 0.0), 1),
+            (-1.0, 1.0)
+        );
+        assert_eq!(
+            data_range(&panel("cycle [count]", "E [J/m^2]", 0.0), 0),
+            (0.0, 2.0)
+        );
     }
 
     #[test]

@@ -116,13 +116,59 @@ fn rewrite_tag(tag: &str) -> String {
                         .and_then(|(_, v)| v.trim().parse::<f64>().ok())
                 };
                 let (x, y) = (get("x").unwrap_or(0.0), get("y").unwrap_or(0.0));
+                let (fx, fy) = (
+                    cx.parse::<f64>().unwrap_or(0.0),
+                    cy.parse::<f64>().unwrap_or(0.0),
+                );
                 // rotate(a, cx, cy) then (x, y) = translate(cx, cy) rotate(a) at (x - cx, y - cy)
-                moved = Some((
-                    format!("translate({cx}, {cy}) rotate({a})"),
-                    fmt_num(x - cx.parse::<f64>().unwrap_or(0.0)),
-                    fmt_num(y - cy.parse::<f64>().unwrap_or(0.0)),
-                ));
+                moved = Some(match (font_size(&attrs), dy_em(&attrs), a.parse::<f64>()) {
+                    // with its dy: the glyphs' middle (0.35 em above the baseline) put on
+                    // the rotation's centre, so that ImageMagick, which turns text the
+                    // other way and ignores dy, draws the label over the same band
+                    (Some(size), Some((k, em)), Ok(deg)) => {
+                        let c0 = (y - fy) + (em - MIDDLE) * size;
+                        let (sin, cos) = deg.to_radians().sin_cos();
+                        let (px, py) = (fx - c0 * sin, fy + c0 * cos);
+                        attrs.remove(k);
+                        changed = true;
+                        (
+                            format!(
+                                "translate({}, {}) rotate({a})",
+                                fmt_num((px * 1e3).round() / 1e3),
+                                fmt_num((py * 1e3).round() / 1e3)
+                            ),
+                            fmt_num(x - fx),
+                            fmt_num((MIDDLE * size * 1e3).round() / 1e3),
+                        )
+                    }
+                    _ => (
+                        format!("translate({cx}, {cy}) rotate({a})"),
+                        fmt_num(x - fx),
+                        fmt_num(y - fy),
+                    ),
+                });
             }
+        }
+    }
+    // a polygon without a stroke: ImageMagick outlines it in black, rsvg does not
+    if name == "polygon" && !attrs.iter().any(|(key, _)| *key == "stroke") {
+        attrs.push(("stroke", "none"));
+        changed = true;
+    }
+    // `dy` (plotters' vertical anchoring of text, "0.76em" or "0.5ex"): ImageMagick ignores
+    // it, so titles lose their top and legend labels sit half a row low; folded into y,
+    // with 1 ex = 0.5 em as rsvg
+    let mut shifted = None;
+    if name == "text" && moved.is_none() {
+        if let (Some(size), Some((k, em))) = (font_size(&attrs), dy_em(&attrs)) {
+            let y = attrs
+                .iter()
+                .find(|(key, _)| *key == "y")
+                .and_then(|(_, v)| v.trim().parse::<f64>().ok())
+                .unwrap_or(0.0);
+            attrs.remove(k);
+            shifted = Some(fmt_num(((y + em * size) * 1e3).round() / 1e3));
+            changed = true;
         }
     }
     if !changed && moved.is_none() {
@@ -133,6 +179,7 @@ fn rewrite_tag(tag: &str) -> String {
     for (key, value) in &attrs {
         let value: &str = match (&moved, *key) {
             (_, "fill" | "stroke") if value.is_empty() => blended.next().map_or("", String::as_str),
+            (_, "y") if shifted.is_some() => shifted.as_deref().unwrap_or(value),
             (Some((t, _, _)), "transform") => t,
             (Some((_, x, _)), "x") => x,
             (Some((_, _, y)), "y") => y,
@@ -142,6 +189,32 @@ fn rewrite_tag(tag: &str) -> String {
     }
     s.push_str(if closing { "/>" } else { ">" });
     s
+}
+
+/// Where the middle of a line of glyphs sits above its baseline, in em (lower case and
+/// capitals of a sans-serif face).
+const MIDDLE: f64 = 0.35;
+
+/// A text's font size (px).
+fn font_size(attrs: &Attributes<'_>) -> Option<f64> {
+    attrs
+        .iter()
+        .find(|(key, _)| *key == "font-size")
+        .and_then(|(_, v)| v.trim().trim_end_matches("px").parse::<f64>().ok())
+}
+
+/// The index of a text's `dy` and its value in em (1 ex = 0.5 em, as rsvg takes it).
+fn dy_em(attrs: &Attributes<'_>) -> Option<(usize, f64)> {
+    let k = attrs.iter().position(|(key, _)| *key == "dy")?;
+    let v = attrs[k].1.trim();
+    let em = if let Some(n) = v.strip_suffix("em") {
+        n.parse::<f64>().ok()?
+    } else if let Some(n) = v.strip_suffix("ex") {
+        0.5 * n.parse::<f64>().ok()?
+    } else {
+        v.parse::<f64>().ok()? / font_size(attrs)?
+    };
+    Some((k, em))
 }
 
 /// The (r, g, b) of a `#rrggbb` colour.
@@ -195,6 +268,11 @@ mod tests {
             portable(r##"<polygon opacity="0.25" fill="#1E3CC8" stroke="none"/>"##),
             r##"<polygon fill="#C7CEF1" stroke="none"/>"##
         );
+        // a polygon without a stroke is given none (ImageMagick would outline it black)
+        assert_eq!(
+            portable(r##"<polygon fill="#C7CEF1" points="1,2 3,4 5,6"/>"##),
+            r##"<polygon fill="#C7CEF1" points="1,2 3,4 5,6" stroke="none"/>"##
+        );
         // a colour that is not #rrggbb keeps its opacity, before the fill
         assert_eq!(
             portable(r##"<rect fill="red" opacity="0.85" x="0"/>"##),
@@ -210,6 +288,23 @@ mod tests {
         assert_eq!(
             s,
             "<text x=\"0\" y=\"0\" dy=\"0.76em\" fill=\"#000000\" transform=\"translate(12, 286) rotate(270)\">\nlabel\n</text>"
+        );
+        // with its font size and dy, the glyphs' middle goes on the rotation's centre,
+        // moved to where rsvg drew it (0.76 - 0.35 em = 4.1 px across the axis)
+        assert_eq!(
+            portable(
+                "<text x=\"12\" y=\"286\" dy=\"0.76em\" font-size=\"10\" transform=\"rotate(270, 12, 286)\">\nlabel\n</text>"
+            ),
+            "<text x=\"0\" y=\"3.5\" font-size=\"10\" transform=\"translate(16.1, 286) rotate(270)\">\nlabel\n</text>"
+        );
+        // with its font size, the dy of unrotated text is folded into y
+        assert_eq!(
+            portable("<text x=\"5\" y=\"20\" dy=\"0.76em\" font-size=\"10\">t</text>"),
+            "<text x=\"5\" y=\"27.6\" font-size=\"10\">t</text>"
+        );
+        assert_eq!(
+            portable("<text x=\"5\" y=\"20\" dy=\"0.5ex\" font-size=\"16\">t</text>"),
+            "<text x=\"5\" y=\"24\" font-size=\"16\">t</text>"
         );
         // text and other bytes pass through
         assert_eq!(portable("a < b"), "a < b");
